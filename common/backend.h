@@ -1,0 +1,54 @@
+// The two backends behind one interface: the CPU runs a stage's kernel compiled as C++ on
+// all cores, the GPU runs the same kernel compiled to SPIR-V (gpu/). A backend renders one
+// pass at a time; the film (film.h) adds the passes up.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "common/shaders/scene_types.h"
+
+namespace pt {
+
+struct Scene;
+
+// The scene arrays as the CPU kernel sees them (the GLSL buffers of bindings.glsl).
+struct KernelScene {
+  const Triangle* triangles;
+  const Sphere* spheres;
+  const Material* materials;
+  const PointLight* point_lights;
+};
+
+// A stage's kernel compiled as C++ (common/shaders/cpu_kernel_impl.h).
+struct CpuKernel {
+  void (*bind)(const KernelScene& scene, const FrameParams& pass);
+  void (*render_rows)(uint y0, uint y1, glm::vec4* out);
+};
+
+// Everything a stage hands to the backends: its name, and its kernel in both forms.
+struct StageKernels {
+  const char* name;                      // e.g. "stage1_raycast"
+  CpuKernel cpu;                         // the integrator compiled as C++
+  std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string kind() const = 0;         // "cpu" or "gpu"
+  virtual std::string device_name() const = 0;  // e.g. "2 threads", "llvmpipe (LLVM 15.0.6)"
+  // Makes the scene's arrays available to the kernel (an upload on the GPU).
+  virtual void set_scene(const Scene& scene) = 0;
+  // Renders params.image.w samples of every pixel into out (width * height values of
+  // render_pixel(): rgb sum, squared-luminance sum). Returns the kernel time in seconds.
+  virtual double run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
+};
+
+std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads = 0);
+
+}  // namespace pt

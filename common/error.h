@@ -1,0 +1,32 @@
+// Errors and warnings as CONTRACT.md wants them: one line that names the problem and
+// what to do, and an exit code (2 bad option, 3 bad scene, 4 no device, 5 output).
+// Not part of the article: the machinery every stage's main() shares.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace pt {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitBadOption = 2,
+  kExitBadScene = 3,
+  kExitNoDevice = 4,
+  kExitOutput = 5,
+};
+
+// Thrown anywhere below main(); guarded_main() prints what() and returns code.
+class Error : public std::runtime_error {
+ public:
+  Error(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  int code() const { return code_; }
+
+ private:
+  int code_;
+};
+
+// Prints "warning: <message>" on stderr the first time a message is given.
+void warn_once(const std::string& message);
+
+}  // namespace pt

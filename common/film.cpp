@@ -1,0 +1,59 @@
+// The film: double-precision accumulation of passes (see film.h).
+#include "common/film.h"
+
+#include <cmath>
+
+namespace pt {
+
+Film::Film(int width, int height)
+    : width_(width), height_(height), sums_(std::size_t(width) * std::size_t(height) * 4, 0.0) {}
+
+void Film::add_pass(std::span<const glm::vec4> pass, std::uint64_t samples) {
+  for (std::size_t i = 0; i < pass.size(); i++) {
+    for (int c = 0; c < 4; c++) sums_[4 * i + c] += double(pass[i][c]);
+  }
+  spp_ += samples;
+}
+
+glm::dvec3 Film::mean(int x, int y) const {
+  if (spp_ == 0) return glm::dvec3(0.0);
+  const double* s = &sums_[4 * (std::size_t(y) * width_ + x)];
+  return glm::dvec3(s[0], s[1], s[2]) / double(spp_);
+}
+
+std::vector<float> Film::mean_rgb() const {
+  std::vector<float> rgb(std::size_t(width_) * height_ * 3);
+  for (int y = 0; y < height_; y++) {
+    for (int x = 0; x < width_; x++) {
+      glm::dvec3 m = mean(x, y);
+      for (int c = 0; c < 3; c++) rgb[3 * (std::size_t(y) * width_ + x) + c] = float(m[c]);
+    }
+  }
+  return rgb;
+}
+
+static double luminance(glm::dvec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+double Film::sample_variance(int x, int y) const {
+  if (spp_ < 2) return 0.0;
+  double n = double(spp_);
+  const double* s = &sums_[4 * (std::size_t(y) * width_ + x)];
+  double sum = luminance(glm::dvec3(s[0], s[1], s[2]));
+  return std::max(0.0, (s[3] - sum * sum / n) / (n - 1.0));
+}
+
+double Film::relative_standard_error() const {
+  if (spp_ < 2) return 0.0;
+  double mean_sum = 0.0, variance_sum = 0.0;
+  for (int y = 0; y < height_; y++) {
+    for (int x = 0; x < width_; x++) {
+      mean_sum += luminance(mean(x, y));
+      variance_sum += sample_variance(x, y) / double(spp_);
+    }
+  }
+  double pixels = double(width_) * double(height_);
+  double image_mean = mean_sum / pixels;
+  return image_mean > 0.0 ? std::sqrt(variance_sum) / pixels / image_mean : 0.0;
+}
+
+}  // namespace pt

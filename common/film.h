@@ -1,0 +1,40 @@
+// The film: per-pixel sums of the samples' radiance, added up pass after pass in double
+// precision so that millions of samples stay exact (a float sum stops growing once the
+// sum is 2^24 times a sample). Also the sum of squared luminance, for the variance.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace pt {
+
+class Film {
+ public:
+  Film(int width, int height);
+
+  // Adds one pass: per pixel (rgb sum, squared-luminance sum) of `samples` samples.
+  void add_pass(std::span<const glm::vec4> pass, std::uint64_t samples);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  std::uint64_t spp() const { return spp_; }
+
+  // The pixel's value: the mean radiance of its samples (box filter).
+  glm::dvec3 mean(int x, int y) const;
+  // The image as float RGB, row after row from the top (what image_output writes).
+  std::vector<float> mean_rgb() const;
+  // Estimated variance of one sample's luminance at a pixel (unbiased, needs spp >= 2).
+  double sample_variance(int x, int y) const;
+  // Estimated relative standard error of the image's mean luminance (0 if unknown).
+  double relative_standard_error() const;
+
+ private:
+  int width_, height_;
+  std::uint64_t spp_ = 0;
+  std::vector<double> sums_;  // per pixel: r, g, b, squared luminance
+};
+
+}  // namespace pt

@@ -1,0 +1,42 @@
+// Image output through OpenImageIO (CONTRACT.md, --out): .exr linear float32 RGB radiance,
+// .png 8-bit sRGB (exposure, then clamp), .hdr RGBE. The target is checked before the
+// render starts and written atomically after it: a temporary file in the same folder,
+// flushed, then renamed over the target, so a failed run never leaves a broken file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pt {
+
+struct ImageMetadata {
+  std::string stage;    // e.g. "stage1_raycast"
+  std::string backend;  // "cpu" or "gpu", with the device
+  std::string scene;    // --scene as given
+  std::uint64_t spp = 0;
+  std::uint32_t seed = 0;
+  double seconds = 0.0;
+};
+
+class OutputFile {
+ public:
+  // Checks the extension (exit 2) and that the folder exists or can be made and is
+  // writable (exit 5), without touching an existing file at `path`.
+  explicit OutputFile(std::string path);
+
+  const std::string& path() const { return path_; }
+
+  // rgb: width * height * 3 linear radiance values, top row first.
+  void write(const std::vector<float>& rgb, int width, int height, const ImageMetadata& meta,
+             float exposure = 0.0f) const;
+
+ private:
+  std::string path_;
+  std::string extension_;  // "exr", "png" or "hdr"
+};
+
+// The 8-bit sRGB encoding of a linear value after exposure (in stops), clamped.
+std::uint8_t encode_srgb8(float linear, float exposure);
+
+}  // namespace pt

@@ -1,0 +1,40 @@
+// The command line every stage takes (CONTRACT.md, "Programs"), parsed with CLI11.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+namespace pt {
+
+// What differs between the stages' command lines.
+struct StageInfo {
+  const char* name;         // "stage1_raycast"
+  const char* summary;      // one line: the stage and its equation
+  std::uint64_t default_spp;
+};
+
+struct Options {
+  std::string scene = "builtin:cornell";  // glTF path or builtin:NAME
+  int width = 512;
+  int height = 512;
+  std::uint64_t spp = 1;
+  std::uint32_t seed = 0;
+  std::string backend = "auto";  // auto, cpu or gpu
+  std::string device;            // GPU choice: index or part of the name (or PT_VULKAN_DEVICE)
+  std::string out;               // default out/<stage>.png
+  glm::vec3 sky{0.0f};           // radiance of rays leaving the scene
+  float exposure = 0.0f;         // stops, for .png output
+  unsigned threads = 0;          // CPU threads, 0 = all cores
+};
+
+// Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with
+// one line for anything wrong.
+std::optional<Options> parse_options(int argc, char** argv, const StageInfo& stage);
+
+// Parses "R,G,B" into three finite, non-negative numbers, or throws pt::Error(2).
+glm::vec3 parse_rgb(const std::string& text, const std::string& option);
+
+}  // namespace pt

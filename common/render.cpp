@@ -1,0 +1,147 @@
+// The render loop and the CPU backend (see render.h and backend.h).
+#include "common/render.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <thread>
+#include <vector>
+
+#include "common/error.h"
+#include "common/scene.h"
+
+namespace pt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The CPU backend: the stage's kernel compiled as C++, rows handed out to all cores.
+class CpuBackend : public Backend {
+ public:
+  CpuBackend(const StageKernels& kernels, unsigned threads)
+      : kernel_(kernels.cpu), threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
+
+  std::string kind() const override { return "cpu"; }
+  std::string device_name() const override { return std::to_string(threads_) + " threads"; }
+
+  void set_scene(const Scene& scene) override {
+    scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
+                         scene.point_lights.data()};
+  }
+
+  double run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
+    Clock::time_point start = Clock::now();
+    kernel_.bind(scene_, params);
+    // Rows are taken a few at a time from a shared counter: cheap load balancing.
+    const uint height = params.image.y, rows_per_task = 4;
+    std::atomic<uint> next_row{0};
+    auto work = [&] {
+      for (uint y0; (y0 = next_row.fetch_add(rows_per_task)) < height;) {
+        kernel_.render_rows(y0, std::min(height, y0 + rows_per_task), out.data());
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned i = 1; i < threads_; i++) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    return seconds_since(start);
+  }
+
+ private:
+  CpuKernel kernel_;
+  unsigned threads_;
+  KernelScene scene_{};
+};
+
+std::uint64_t available_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kb;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit) {
+    if (key == "MemAvailable:") return kb * 1024;
+  }
+  return std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE));
+}
+
+void print_progress(const RenderSettings& s, std::uint64_t done, double elapsed) {
+  double left = elapsed / double(done) * double(s.spp - done);
+  std::fprintf(stderr, "\r%s: %3d%% (%llu/%llu spp), %.1f s elapsed, about %.1f s left   ", s.label,
+               int(100.0 * double(done) / double(s.spp)), (unsigned long long)done, (unsigned long long)s.spp,
+               elapsed, left);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads) {
+  return std::make_unique<CpuBackend>(kernels, threads);
+}
+
+std::uint64_t pass_samples(std::uint64_t index) {
+  return index >= 4 ? kMaxPassSamples : std::min(kMaxPassSamples, std::uint64_t(1) << index);
+}
+
+void check_image_memory(int width, int height, std::uint64_t bytes_per_pixel_on_device) {
+  // Film: 4 doubles per pixel; pass buffer: 4 floats per pixel; output: 3 floats.
+  const std::uint64_t host_per_pixel = 4 * sizeof(double) + 4 * sizeof(float) + 3 * sizeof(float);
+  std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height), bytes = 0;
+  if (pixels > (std::uint64_t(1) << 31)) {
+    throw Error(kExitBadOption, "image " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " has more than 2^31 pixels; render a smaller image");
+  }
+  if (__builtin_mul_overflow(pixels, host_per_pixel, &bytes) || bytes > available_memory_bytes()) {
+    char line[256];
+    std::snprintf(line, sizeof line, "image %dx%d needs %.1f GB of memory, this machine has %.1f GB available; "
+                  "render a smaller image", width, height, double(pixels) * double(host_per_pixel) / 1e9,
+                  double(available_memory_bytes()) / 1e9);
+    throw Error(kExitBadOption, line);
+  }
+  (void)bytes_per_pixel_on_device;  // the GPU backend checks its own device's limits
+}
+
+FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
+  FrameParams p{};
+  p.camera = make_camera(scene, float(s.width) / float(s.height));
+  p.sky = glm::vec4(s.sky, 0.0f);
+  p.image = glm::uvec4(uint(s.width), uint(s.height), 0u, 0u);
+  p.counts = glm::uvec4(uint(scene.triangles.size()), uint(scene.spheres.size()), uint(scene.materials.size()),
+                        uint(scene.point_lights.size()));
+  p.options = glm::uvec4(s.seed, s.roulette, s.depth_cap, 0u);
+  return p;
+}
+
+RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& s) {
+  RenderResult result{Film(s.width, s.height)};
+  backend.set_scene(scene);
+  FrameParams params = make_frame_params(scene, s);
+  std::vector<glm::vec4> pass(std::size_t(s.width) * std::size_t(s.height));
+  bool show_progress = s.progress && ::isatty(2);
+  bool shown = false;
+  Clock::time_point start = Clock::now();
+  std::uint64_t done = 0;
+  for (std::uint64_t index = 0; done < s.spp; index++) {
+    std::uint64_t n = std::min(pass_samples(index), s.spp - done);
+    params.image.z = uint(done);
+    params.image.w = uint(n);
+    result.kernel_seconds += backend.run_pass(params, pass);
+    result.film.add_pass(pass, n);
+    done += n;
+    double elapsed = seconds_since(start);
+    if (show_progress && elapsed > 1.0 && done < s.spp) print_progress(s, done, elapsed), shown = true;
+  }
+  if (shown) std::fprintf(stderr, "\r%*s\r", 79, "");
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace pt

@@ -1,0 +1,52 @@
+// The render loop shared by every stage: passes of doubling sample counts on a backend,
+// added up by the film, with a progress line on a terminal. The pass schedule depends only
+// on the sample count, so the same seed and options give the same image on a backend.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "common/backend.h"
+#include "common/film.h"
+
+namespace pt {
+
+struct Scene;
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  std::uint64_t spp = 1;
+  std::uint32_t seed = 0;
+  glm::vec3 sky{0.0f};
+  std::uint32_t roulette = kRouletteFixed;  // stage2 onwards
+  std::uint32_t depth_cap = 1000;           // stage2 onwards: a safety net only
+  bool progress = false;                    // progress line on stderr
+  const char* label = "render";             // names the progress line
+};
+
+struct RenderResult {
+  Film film;
+  double seconds = 0.0;         // wall time of the passes
+  double kernel_seconds = 0.0;  // time the kernels ran (GPU: timestamp queries)
+};
+
+// Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's
+// watchdog) and the progress line moves.
+constexpr std::uint64_t kMaxPassSamples = 16;
+
+// Samples in pass number `index` (0, 1, ...): 1, 2, 4, ... up to kMaxPassSamples.
+std::uint64_t pass_samples(std::uint64_t index);
+
+// The parameters every pass shares (the first sample index and count are set per pass).
+FrameParams make_frame_params(const Scene& scene, const RenderSettings& settings);
+
+RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& settings);
+
+// Bytes of host memory a render of this size needs (film + pass buffer), with overflow
+// checks; throws pt::Error(2) naming the numbers if the machine does not have them.
+void check_image_memory(int width, int height, std::uint64_t bytes_per_pixel_on_device = 0);
+
+}  // namespace pt

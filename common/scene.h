@@ -1,0 +1,61 @@
+// The scene on the host: flat arrays of triangles, spheres, materials and point lights,
+// plus the camera as the file describes it (DESIGN.md, "Scene and kernels").
+// Loaded from glTF (gltf_loader.cpp) or built in (builtin_scenes.cpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "common/shaders/scene_types.h"
+
+namespace pt {
+
+// A camera as glTF gives it; the image aspect is only known at render time.
+struct CameraDesc {
+  uint kind = kCameraPerspective;  // kCameraPerspective or kCameraOrthographic
+  glm::mat4 to_world{1.0f};        // the camera node's world transform (looks down -Z)
+  float yfov = 0.6911f;            // perspective: vertical field of view, radians
+  float xmag = 1.0f, ymag = 1.0f;  // orthographic: half-extents of the view
+};
+
+struct Bounds {
+  glm::vec3 lo{1e30f}, hi{-1e30f};
+  void extend(glm::vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+  bool empty() const { return lo.x > hi.x; }
+};
+
+struct Scene {
+  std::string name;                      // file path or builtin:NAME
+  std::vector<Triangle> triangles;       // world space, material in info.x
+  std::vector<Sphere> spheres;           // world space, material in info.x
+  std::vector<Material> materials;       // indexed by Triangle/Sphere info.x
+  std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
+  std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
+  int degenerate_triangles = 0;          // skipped at load (zero area or not finite)
+
+  Bounds bounds() const;
+  // Appends a material and returns its index.
+  uint add_material(const Material& m);
+  void add_triangle(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, uint material);
+  void add_sphere(glm::vec3 center, float radius, uint material);
+};
+
+// Material constructors following CONTRACT.md's rules.
+Material make_diffuse(glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f), bool double_sided = false);
+Material make_metal(glm::vec3 f0, float roughness);  // roughness 0: mirror, else GGX alpha = r^2
+Material make_glass(glm::vec3 tint, float ior);
+// The full glTF metallic-roughness rule (transmission wins, then metallic 0 / 1 / between).
+Material make_gltf_material(glm::vec3 base, float metallic, float roughness, float transmission,
+                            float ior, glm::vec3 emission, bool double_sided);
+
+// The kernel camera for an image of the given aspect (width / height). With no camera in
+// the scene, a perspective camera on +Z frames the bounding box.
+Camera make_camera(const Scene& scene, float aspect);
+
+// Whether the material emits light (any emission component above zero).
+bool is_emissive(const Material& m);
+
+}  // namespace pt

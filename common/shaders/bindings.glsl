@@ -1,0 +1,24 @@
+// The kernel's view of the scene: the flat arrays of scene_types.h and the per-pass
+// parameters, as Vulkan buffers in GLSL and as plain globals in C++ (set by
+// cpu_kernel_impl.h before each pass). The same names on both sides.
+#ifndef PT_BINDINGS_GLSL
+#define PT_BINDINGS_GLSL
+
+#ifdef __cplusplus
+inline const Triangle* triangles = nullptr;
+inline const Sphere* spheres = nullptr;
+inline const Material* materials = nullptr;
+inline const PointLight* point_lights = nullptr;
+inline FrameParams params;
+inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
+#else
+layout(std430, set = 0, binding = 0) readonly buffer TriangleBuffer { Triangle triangles[]; };
+layout(std430, set = 0, binding = 1) readonly buffer SphereBuffer { Sphere spheres[]; };
+layout(std430, set = 0, binding = 2) readonly buffer MaterialBuffer { Material materials[]; };
+layout(std430, set = 0, binding = 3) readonly buffer PointLightBuffer { PointLight point_lights[]; };
+layout(std140, set = 0, binding = 4) uniform ParamsBuffer { FrameParams params; };
+layout(std430, set = 0, binding = 5) writeonly buffer OutputBuffer { vec4 pass_output[]; };
+uint rng_state;  // the random-number state of one invocation
+#endif
+
+#endif  // PT_BINDINGS_GLSL

@@ -1,0 +1,22 @@
+// The C++ half of the GLSL/C++ subset in which the integrators are written (DESIGN.md,
+// "One integrator source, two backends"). A stage's cpu_kernel.cpp includes this, opens
+// its own namespace, says `using namespace pt::glsl;` and #includes its integrator.glsl.
+//
+// Rules of the subset, kept by every file under common/shaders and stage*/integrator.glsl:
+//   free functions and plain structs only; no references, pointers or recursion (paths are
+//   loops with a throughput); float literals with an f suffix; no swizzles (single members
+//   .x .y .z .w only); structs built as Type(a, b, c); per-invocation state (rng_state) is
+//   a global, thread_local here; scene arrays are globals: SSBOs in GLSL, pointers here.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "common/shaders/scene_types.h"
+
+namespace pt::glsl {
+using namespace glm;
+using namespace pt;  // the layouts and constants of scene_types.h
+using uint = std::uint32_t;
+}  // namespace pt::glsl

@@ -1,0 +1,23 @@
+// The CPU entry point of a stage's kernel: binds the host arrays to the kernel globals of
+// bindings.glsl and runs render_pixel() over rows. It is included INSIDE the stage's
+// namespace, after integrator.glsl (see stage*/cpu_kernel.cpp), so each stage gets its own.
+
+// Binds the scene and the parameters of the next pass (called on one thread).
+inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) {
+  triangles = scene.triangles;
+  spheres = scene.spheres;
+  materials = scene.materials;
+  point_lights = scene.point_lights;
+  params = pass;
+}
+
+// Renders rows [y0, y1) of the pass into out[y * width + x] (called on many threads).
+inline void cpu_render_rows(uint y0, uint y1, glm::vec4* out) {
+  for (uint y = y0; y < y1; y++) {
+    for (uint x = 0u; x < params.image.x; x++) out[y * params.image.x + x] = render_pixel(x, y);
+  }
+}
+
+inline pt::CpuKernel cpu_kernel() {
+  return pt::CpuKernel{&cpu_bind, &cpu_render_rows};
+}

@@ -1,0 +1,127 @@
+// Ray-scene intersection: brute force over every primitive in one function, as the
+// article keeps it (section on raycasting: the one procedure an acceleration structure
+// would later replace). Triangles use the watertight test of Woop, Benthin and Wald
+// (JCGT 2013), so rays aimed at shared edges and vertices never slip through a mesh;
+// spheres use the cancellation-free quadratic of Haines et al. (Ray Tracing Gems, ch. 7).
+#ifndef PT_INTERSECT_GLSL
+#define PT_INTERSECT_GLSL
+
+const float kInfinity = 3.402823466e38f;  // the largest float: "no hit yet"
+
+struct Hit {
+  float t;    // distance along the ray (directions are unit length)
+  float b1;   // barycentric weight of p1 (triangles)
+  float b2;   // barycentric weight of p2 (triangles)
+  uint prim;  // index into triangles[] or spheres[]
+  uint kind;  // kPrimNone, kPrimTriangle or kPrimSphere
+};
+
+// The per-ray part of the watertight test: the axis the ray runs along most becomes z,
+// and a shear maps the ray onto +z.
+struct RayShear {
+  int kx;
+  int ky;
+  int kz;
+  vec3 s;  // x, y: shear of the kx, ky coordinates; z: 1 / dir[kz]
+};
+
+RayShear make_ray_shear(vec3 dir) {
+  vec3 a = abs(dir);
+  int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  int kx = kz == 2 ? 0 : kz + 1;
+  int ky = kx == 2 ? 0 : kx + 1;
+  if (dir[kz] < 0.0f) {  // keep the winding of the triangle
+    int swap = kx;
+    kx = ky;
+    ky = swap;
+  }
+  return RayShear(kx, ky, kz, vec3(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0f / dir[kz]));
+}
+
+// Returns a hit with triangle `index` if it is nearer than `best`, else `best`.
+Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
+  Triangle tri = triangles[index];
+  vec3 a = vec3(tri.p0) - ray.origin;
+  vec3 b = vec3(tri.p1) - ray.origin;
+  vec3 c = vec3(tri.p2) - ray.origin;
+  // Shear and scale the vertices into the ray's space.
+  float ax = a[rs.kx] - rs.s.x * a[rs.kz];
+  float ay = a[rs.ky] - rs.s.y * a[rs.kz];
+  float bx = b[rs.kx] - rs.s.x * b[rs.kz];
+  float by = b[rs.ky] - rs.s.y * b[rs.kz];
+  float cx = c[rs.kx] - rs.s.x * c[rs.kz];
+  float cy = c[rs.ky] - rs.s.y * c[rs.kz];
+  // Edge functions: the ray passes inside when none has a sign opposite to the others.
+  float u = cx * by - cy * bx;
+  float v = ax * cy - ay * cx;
+  float w = bx * ay - by * ax;
+  if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return best;
+  float det = u + v + w;
+  if (det == 0.0f) return best;
+  // Scaled distance, compared with best.t without dividing.
+  float az = rs.s.z * a[rs.kz];
+  float bz = rs.s.z * b[rs.kz];
+  float cz = rs.s.z * c[rs.kz];
+  float t_scaled = u * az + v * bz + w * cz;
+  if (det < 0.0f && (t_scaled >= 0.0f || t_scaled < best.t * det)) return best;
+  if (det > 0.0f && (t_scaled <= 0.0f || t_scaled > best.t * det)) return best;
+  float inv_det = 1.0f / det;
+  return Hit(t_scaled * inv_det, v * inv_det, w * inv_det, index, kPrimTriangle);
+}
+
+// Returns a hit with sphere `index` if it is nearer than `best`, else `best`.
+Hit hit_sphere(Ray ray, uint index, Hit best) {
+  vec3 center = vec3(spheres[index].center_radius);
+  float radius = spheres[index].center_radius.w;
+  vec3 f = ray.origin - center;
+  float b = -dot(f, ray.dir);
+  vec3 l = f + b * ray.dir;  // from the centre to the ray's closest point
+  float disc = radius * radius - dot(l, l);
+  if (disc < 0.0f) return best;
+  float c = dot(f, f) - radius * radius;
+  float q = b + (b >= 0.0f ? sqrt(disc) : -sqrt(disc));
+  float t0 = q != 0.0f ? c / q : 0.0f;
+  float t1 = q;
+  float near_t = min(t0, t1);
+  float far_t = max(t0, t1);
+  float t = near_t > 0.0f ? near_t : far_t;
+  if (t <= 0.0f || t >= best.t) return best;
+  return Hit(t, 0.0f, 0.0f, index, kPrimSphere);
+}
+
+// The nearest hit closer than t_max, or a hit of kind kPrimNone.
+Hit intersect_scene(Ray ray, float t_max) {
+  Hit best = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+  RayShear rs = make_ray_shear(ray.dir);
+  for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
+  for (uint i = 0u; i < params.counts.y; i++) best = hit_sphere(ray, i, best);
+  return best;
+}
+
+// What the integrator needs to know about the point a ray hit.
+struct Surface {
+  vec3 p;         // position
+  vec3 n;         // unit geometric normal on the front side (CCW winding, sphere outside)
+  bool front;     // the ray arrived from the front side
+  uint material;  // index into materials[]
+};
+
+Surface surface_at(Ray ray, Hit hit) {
+  if (hit.kind == kPrimTriangle) {
+    Triangle tri = triangles[hit.prim];
+    vec3 p0 = vec3(tri.p0);
+    vec3 p1 = vec3(tri.p1);
+    vec3 p2 = vec3(tri.p2);
+    // The barycentric point is more accurate than origin + t * dir far from the origin.
+    vec3 p = (1.0f - hit.b1 - hit.b2) * p0 + hit.b1 * p1 + hit.b2 * p2;
+    vec3 n = normalize(cross(p1 - p0, p2 - p0));
+    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.info.x);
+  }
+  Sphere sph = spheres[hit.prim];
+  vec3 center = vec3(sph.center_radius);
+  vec3 p = ray.origin + hit.t * ray.dir;
+  vec3 n = normalize(p - center);
+  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.info.x);
+}
+
+#endif  // PT_INTERSECT_GLSL

@@ -1,0 +1,92 @@
+// Data layouts shared by the host (C++) and the kernels (GLSL and C++): the scene as
+// flat arrays (DESIGN.md, "Scene and kernels"). Every struct is made of 16-byte vectors
+// so that std430 and C++ agree on offsets; the C++ side checks sizes with static_assert.
+// Article: the scene the intersection procedure of Eq. (2)-(5) searches, brute force.
+#ifndef PT_SCENE_TYPES_H
+#define PT_SCENE_TYPES_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+#include <cstdint>
+namespace pt {
+using glm::vec4;
+using glm::uvec4;
+using uint = std::uint32_t;
+#endif
+
+// Material kinds (CONTRACT.md, "Materials").
+const uint kMaterialDiffuse = 0u;    // Lambertian, albedo = base colour
+const uint kMaterialMirror = 1u;     // metallic 1, roughness 0: Schlick Fresnel, delta
+const uint kMaterialConductor = 2u;  // metallic 1, roughness > 0: GGX, alpha = roughness^2
+const uint kMaterialGlass = 3u;      // KHR_materials_transmission: smooth dielectric
+const uint kMaterialMixed = 4u;      // 0 < metallic < 1: conductor w.p. metallic, else diffuse
+
+// Primitive kinds, as the intersection search reports them.
+const uint kPrimNone = 0u;
+const uint kPrimTriangle = 1u;
+const uint kPrimSphere = 2u;
+
+// Camera kinds (glTF cameras, CONTRACT.md "Camera").
+const uint kCameraPerspective = 0u;
+const uint kCameraOrthographic = 1u;
+
+// Russian roulette modes (stage2 onwards).
+const uint kRouletteFixed = 0u;       // the article: continue with probability 1/2
+const uint kRouletteThroughput = 1u;  // continue with the path weight's largest component
+
+const uint kNoLight = 0xffffffffu;
+
+struct Triangle {
+  vec4 p0;     // xyz: vertex 0 (world space)
+  vec4 p1;     // xyz: vertex 1
+  vec4 p2;     // xyz: vertex 2; counter-clockwise seen from the front
+  uvec4 info;  // x: material index, y: light index or kNoLight
+};
+
+struct Sphere {
+  vec4 center_radius;  // xyz: centre, w: radius
+  uvec4 info;          // x: material index, y: light index or kNoLight
+};
+
+struct Material {
+  vec4 base_color;  // rgb: albedo / F0 / glass tint
+  vec4 emission;    // rgb: emitted radiance (factor x strength), w: 1 if double-sided
+  vec4 params;      // x: metallic, y: GGX alpha (roughness^2), z: transmission, w: ior
+  uvec4 kind;       // x: kMaterial*
+};
+
+struct PointLight {
+  vec4 position;   // xyz: world position
+  vec4 intensity;  // rgb: radiant intensity, W/sr (colour x intensity)
+};
+
+struct Camera {
+  vec4 origin;   // xyz: eye position
+  vec4 forward;  // xyz: unit view direction (the node's -Z)
+  vec4 right;    // xyz: unit image +x
+  vec4 up;       // xyz: unit image +y
+  vec4 extent;   // perspective: x = tan(yfov/2) * aspect, y = tan(yfov/2);
+                 // orthographic: x = xmag, y = ymag (half-extents)
+  uvec4 kind;    // x: kCamera*
+};
+
+// Everything a pass needs besides the arrays: one uniform block on the GPU.
+struct FrameParams {
+  Camera camera;
+  vec4 sky;        // rgb: radiance of rays that leave the scene
+  uvec4 image;     // x: width, y: height, z: first sample index of this pass, w: samples
+  uvec4 counts;    // x: triangles, y: spheres, z: materials, w: point lights
+  uvec4 options;   // x: seed, y: roulette mode, z: depth cap, w: unused
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(Triangle) == 64);
+static_assert(sizeof(Sphere) == 32);
+static_assert(sizeof(Material) == 64);
+static_assert(sizeof(PointLight) == 32);
+static_assert(sizeof(Camera) == 96);
+static_assert(sizeof(FrameParams) == 160);
+}  // namespace pt
+#endif
+
+#endif  // PT_SCENE_TYPES_H

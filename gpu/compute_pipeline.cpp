@@ -1,0 +1,96 @@
+// Compute pipeline and descriptor set (see compute_pipeline.h).
+#include "gpu/compute_pipeline.h"
+
+namespace pt::gpu {
+
+namespace {
+VkDescriptorType binding_type(uint32_t binding) {
+  return binding == kParamsBinding ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+}  // namespace
+
+ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv)
+    : device_(context.device()) {
+  try {
+    // The layout of bindings.glsl: what kind of buffer sits at each binding.
+    VkDescriptorSetLayoutBinding bindings[kBindingCount];
+    for (uint32_t i = 0; i < kBindingCount; i++) {
+      bindings[i] = VkDescriptorSetLayoutBinding{i, binding_type(i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    }
+    VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    set_info.bindingCount = kBindingCount;
+    set_info.pBindings = bindings;
+    check(vkCreateDescriptorSetLayout(device_, &set_info, nullptr, &set_layout_), "creating a descriptor set layout");
+
+    VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layout_info.setLayoutCount = 1;
+    layout_info.pSetLayouts = &set_layout_;
+    check(vkCreatePipelineLayout(device_, &layout_info, nullptr, &layout_), "creating a pipeline layout");
+
+    // The kernel: SPIR-V that glslangValidator made at build time.
+    VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    module_info.codeSize = spirv.size_bytes();
+    module_info.pCode = spirv.data();
+    check(vkCreateShaderModule(device_, &module_info, nullptr, &module_), "loading the kernel");
+
+    VkComputePipelineCreateInfo pipe_info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    pipe_info.stage = VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    pipe_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipe_info.stage.module = module_;
+    pipe_info.stage.pName = "main";
+    pipe_info.layout = layout_;
+    check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_),
+          "compiling the kernel");
+
+    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 1},
+                                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}};
+    VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool_info.maxSets = 1;
+    pool_info.poolSizeCount = 2;
+    pool_info.pPoolSizes = sizes;
+    check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_), "creating a descriptor pool");
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = pool_;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &set_layout_;
+    check(vkAllocateDescriptorSets(device_, &alloc, &set_), "allocating a descriptor set");
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+ComputePipeline::~ComputePipeline() { release(); }
+
+void ComputePipeline::release() {
+  if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
+  if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
+  if (module_) vkDestroyShaderModule(device_, module_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
+  if (set_layout_) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
+  pool_ = VK_NULL_HANDLE, pipeline_ = VK_NULL_HANDLE, module_ = VK_NULL_HANDLE;
+  layout_ = VK_NULL_HANDLE, set_layout_ = VK_NULL_HANDLE;
+}
+
+void ComputePipeline::bind_buffers(const Buffer* const (&buffers)[kBindingCount]) {
+  VkDescriptorBufferInfo infos[kBindingCount];
+  VkWriteDescriptorSet writes[kBindingCount];
+  for (uint32_t i = 0; i < kBindingCount; i++) {
+    infos[i] = VkDescriptorBufferInfo{buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+    writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = set_;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = binding_type(i);
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(device_, kBindingCount, writes, 0, nullptr);
+}
+
+void ComputePipeline::record_dispatch(VkCommandBuffer cmd, uint32_t groups_x, uint32_t groups_y) const {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdDispatch(cmd, groups_x, groups_y, 1);
+}
+
+}  // namespace pt::gpu

@@ -1,0 +1,164 @@
+// The Vulkan compute backend (see gpu_backend.h): the scene arrays in storage buffers,
+// one pass = a few dispatches of 8x8 workgroups over row ranges, each short enough for a
+// desktop GPU's watchdog, timed with timestamp queries, then the output read back.
+#include "gpu/gpu_backend.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "common/error.h"
+#include "common/scene.h"
+#include "gpu/compute_pipeline.h"
+
+namespace pt::gpu {
+
+namespace {
+
+constexpr uint32_t kGroupSize = 8;                      // kernel_main.glsl's local size
+constexpr uint64_t kPixelSamplesPerDispatch = 1u << 22;  // about 4 million camera samples
+constexpr uint64_t kFenceTimeoutNs = 120'000'000'000;    // a dispatch that takes 2 minutes is hung
+
+std::string megabytes(VkDeviceSize bytes) { return std::to_string((bytes + 999'999) / 1'000'000) + " MB"; }
+
+class GpuBackend : public Backend {
+ public:
+  GpuBackend(const StageKernels& kernels, const std::string& device)
+      : context_(device), pipeline_(context_, kernels.spirv) {
+    VkDevice dev = context_.device();
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = context_.command_pool();
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    check(vkAllocateCommandBuffers(dev, &alloc, &cmd_), "allocating a command buffer");
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    check(vkCreateFence(dev, &fence_info, nullptr, &fence_), "creating a fence");
+    if (context_.has_timestamps()) {
+      VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      q.queryCount = 2;
+      check(vkCreateQueryPool(dev, &q, nullptr, &queries_), "creating a timestamp query pool");
+    }
+    params_ = Buffer(context_, sizeof(FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  }
+
+  ~GpuBackend() override {
+    VkDevice dev = context_.device();
+    vkDeviceWaitIdle(dev);
+    if (queries_) vkDestroyQueryPool(dev, queries_, nullptr);
+    if (fence_) vkDestroyFence(dev, fence_, nullptr);
+  }
+
+  std::string kind() const override { return "gpu"; }
+  std::string device_name() const override { return context_.device_name(); }
+
+  void set_scene(const Scene& scene) override {
+    upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
+    upload(spheres_, scene.spheres.data(), scene.spheres.size() * sizeof(Sphere));
+    upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
+    upload(point_lights_, scene.point_lights.data(), scene.point_lights.size() * sizeof(PointLight));
+  }
+
+  double run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
+    const uint32_t width = params.image.x, height = params.image.y;
+    ensure_output(VkDeviceSize(out.size_bytes()));
+    const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_, &params_, &output_};
+    pipeline_.bind_buffers(buffers);
+
+    // Rows per dispatch: a bounded amount of work, a whole number of workgroups.
+    const VkPhysicalDeviceLimits& limits = context_.properties().limits;
+    uint64_t rows = kPixelSamplesPerDispatch / (uint64_t(width) * std::max(1u, params.image.w));
+    rows = std::clamp<uint64_t>(rows / kGroupSize * kGroupSize, kGroupSize,
+                                uint64_t(limits.maxComputeWorkGroupCount[1]) * kGroupSize);
+    const uint32_t groups_x = (width + kGroupSize - 1) / kGroupSize;
+    if (groups_x > limits.maxComputeWorkGroupCount[0]) {
+      throw Error(kExitNoDevice, "image width " + std::to_string(width) + " needs more workgroups than device '" +
+                                     context_.device_name() + "' allows; render a narrower image or use --backend cpu");
+    }
+    double kernel_seconds = 0.0;
+    for (uint32_t row0 = 0; row0 < height; row0 += uint32_t(rows)) {
+      uint32_t n = uint32_t(std::min<uint64_t>(rows, height - row0));
+      FrameParams chunk = params;
+      chunk.options.w = row0;
+      params_.write(&chunk, sizeof chunk);
+      kernel_seconds += dispatch(groups_x, (n + kGroupSize - 1) / kGroupSize);
+    }
+    output_.read(out.data(), out.size_bytes());
+    return kernel_seconds;
+  }
+
+ private:
+  // Storage buffers never have size 0: an empty array still gets a small buffer.
+  void upload(Buffer& buffer, const void* data, std::size_t bytes) {
+    check_range(bytes, "the scene");
+    buffer = Buffer(context_, std::max<std::size_t>(bytes, 64), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (bytes) buffer.write(data, bytes);
+  }
+
+  void ensure_output(VkDeviceSize bytes) {
+    if (output_.size() == bytes) return;
+    check_range(bytes, "the image");
+    output_ = Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  }
+
+  // A storage buffer larger than the device's limit cannot be bound: say so before trying.
+  void check_range(VkDeviceSize bytes, const char* what) const {
+    VkDeviceSize limit = context_.properties().limits.maxStorageBufferRange;
+    if (bytes > limit) {
+      throw Error(kExitNoDevice, std::string(what) + " needs a " + megabytes(bytes) + " buffer but device '" +
+                                     context_.device_name() + "' allows " + megabytes(limit) +
+                                     "; render a smaller image or use --backend cpu");
+    }
+  }
+
+  // Records and submits one dispatch, waits for it; returns its kernel time.
+  double dispatch(uint32_t groups_x, uint32_t groups_y) {
+    VkDevice dev = context_.device();
+    check(vkResetCommandBuffer(cmd_, 0), "resetting a command buffer");
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    check(vkBeginCommandBuffer(cmd_, &begin), "recording commands");
+    if (queries_) {
+      vkCmdResetQueryPool(cmd_, queries_, 0, 2);
+      vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+    }
+    pipeline_.record_dispatch(cmd_, groups_x, groups_y);
+    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+    // Make the shader's writes visible to the host's read of the output buffer.
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+                         nullptr, 0, nullptr);
+    check(vkEndCommandBuffer(cmd_), "recording commands");
+
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd_;
+    check(vkResetFences(dev, 1, &fence_), "resetting a fence");
+    check(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "submitting the kernel");
+    VkResult waited = vkWaitForFences(dev, 1, &fence_, VK_TRUE, kFenceTimeoutNs);
+    if (waited == VK_TIMEOUT) {
+      throw Error(kExitNoDevice, "the Vulkan device did not finish a pass within 2 minutes; use --backend cpu");
+    }
+    check(waited, "running the kernel");
+    if (!queries_) return 0.0;
+    uint64_t stamps[2];
+    check(vkGetQueryPoolResults(dev, queries_, 0, 2, sizeof stamps, stamps, sizeof(uint64_t),
+                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+          "reading timestamps");
+    return double(stamps[1] - stamps[0]) * double(context_.properties().limits.timestampPeriod) * 1e-9;
+  }
+
+  VulkanContext context_;
+  ComputePipeline pipeline_;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+  Buffer triangles_, spheres_, materials_, point_lights_, params_, output_;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> create_backend(const StageKernels& kernels, const std::string& device) {
+  return std::make_unique<GpuBackend>(kernels, device);
+}
+
+}  // namespace pt::gpu

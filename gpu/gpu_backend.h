@@ -1,0 +1,17 @@
+// The Vulkan compute backend: runs a stage's kernel (its integrator compiled to SPIR-V)
+// on any Vulkan device, a real GPU or Mesa's lavapipe. The article: "per-pixel work is
+// independent, so the GPU runs one thread per pixel".
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "common/backend.h"
+
+namespace pt::gpu {
+
+// device: "" for the best device, an index, or part of a device name. Throws
+// pt::Error(kExitNoDevice) when there is no Vulkan, no device, or it cannot run the kernel.
+std::unique_ptr<Backend> create_backend(const StageKernels& kernels, const std::string& device);
+
+}  // namespace pt::gpu

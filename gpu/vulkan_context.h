@@ -1,0 +1,58 @@
+// The Vulkan objects every compute job needs, behind one RAII type: the loader (opened at
+// run time through volk, so a machine without Vulkan still runs the CPU backend), an
+// instance without a window, the chosen physical device, a logical device with one compute
+// queue, and a command pool. Not part of the article: the machinery of the GPU backend.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <volk.h>
+
+namespace pt::gpu {
+
+// Throws pt::Error(kExitNoDevice) naming `what` if result is not VK_SUCCESS.
+void check(VkResult result, const char* what);
+
+struct DeviceInfo {
+  uint32_t index;
+  std::string name;
+  VkPhysicalDeviceType type;
+};
+
+class VulkanContext {
+ public:
+  // device: "" (best device: discrete, integrated, virtual, then CPU such as lavapipe),
+  // a device index, or part of a device name (case-insensitive).
+  explicit VulkanContext(const std::string& device);
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  VkDevice device() const { return device_; }
+  VkPhysicalDevice physical_device() const { return physical_; }
+  VkQueue queue() const { return queue_; }
+  VkCommandPool command_pool() const { return pool_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  std::string device_name() const { return properties_.deviceName; }
+  bool has_timestamps() const { return timestamp_bits_ > 0; }
+
+  // A memory type index with all of `required` among `type_bits`, preferring `preferred`.
+  uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) const;
+
+ private:
+  void create(const std::string& device);
+  void release();
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+  uint32_t queue_family_ = 0;
+  uint32_t timestamp_bits_ = 0;
+};
+
+}  // namespace pt::gpu

@@ -1,0 +1,24 @@
+// stage1_raycast: the article's simplest algorithm, raycasting (section "Простейший
+// алгоритм по методу бросания лучей", Eq. 2): Lout = Le. One ray per sample; the surface
+// it meets shows its emission where it emits, otherwise its base colour, as if every
+// object emitted its own colour (the article's assumption; CONTRACT.md "stage1").
+// Written in the GLSL/C++ subset of common/shaders/cpp_prelude.h: both backends run it.
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/rng.glsl"
+#include "common/shaders/camera.glsl"
+#include "common/shaders/intersect.glsl"
+
+// Eq. (2): the radiance leaving the first surface towards the camera is its own.
+vec3 Li(Ray ray) {
+  Hit hit = intersect_scene(ray, kInfinity);
+  if (hit.kind == kPrimNone) return vec3(params.sky);
+  Surface surface = surface_at(ray, hit);
+  Material material = materials[surface.material];
+  // Le: an emitter shines from its front face, or from both when double-sided.
+  bool emits = max(material.emission.x, max(material.emission.y, material.emission.z)) > 0.0f;
+  if (emits && (surface.front || material.emission.w > 0.0f)) return vec3(material.emission);
+  // The article's assumption: every other object "emits" its base colour.
+  return vec3(material.base_color);
+}
+
+#include "common/shaders/render_pixel.glsl"

@@ -1,0 +1,141 @@
+// The programs as users run them (CONTRACT.md): bad input gets one clear line on stderr
+// and the contract's exit code (2 option, 3 scene, 4 device, 5 output), and an existing
+// output file is never clobbered by a failed run.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int code;
+  std::string err;
+  std::string out;
+};
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch() {
+  fs::path dir = fs::temp_directory_path() / ("pt_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+Run run(const std::string& args, const std::string& env = "") {
+  fs::path dir = scratch();
+  std::string cmd = env + " " PT_STAGE1_BIN " " + args + " >" + (dir / "stdout").string() + " 2>" +
+                    (dir / "stderr").string() + " </dev/null";
+  int status = std::system(cmd.c_str());
+  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stderr"), read_file(dir / "stdout")};
+}
+
+int lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+// The contract's shape of an error: exit code, one line naming the stage, key words.
+void check_error(const Run& r, int code, const std::string& words) {
+  INFO("stderr: " << r.err);
+  CHECK(r.code == code);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.rfind("stage1_raycast: ", 0) == 0);
+  CHECK(r.err.find(words) != std::string::npos);
+}
+
+std::string write(const std::string& name, const std::string& text) {
+  fs::path p = scratch() / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+}  // namespace
+
+TEST_CASE("cli: a good render writes the image and prints one summary line", "[cli]") {
+  std::string out = (scratch() / "ok.exr").string();
+  Run r = run("--backend cpu --width 32 --height 24 --spp 2 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(lines(r.out) == 1);
+  CHECK(r.out.find("stage1_raycast: backend cpu") == 0);
+  CHECK(r.out.find("32x24, 2 spp") != std::string::npos);
+  CHECK(fs::file_size(out) > 0);
+}
+
+TEST_CASE("cli: --help lists every option and the built-in scenes", "[cli]") {
+  Run r = run("--help");
+  CHECK(r.code == 0);
+  for (const char* word : {"--scene", "--width", "--height", "--spp", "--seed", "--backend", "--out", "--sky",
+                           "builtin:cornell", "cornell", "furnace"}) {
+    CHECK(r.out.find(word) != std::string::npos);
+  }
+}
+
+TEST_CASE("cli: bad options exit 2 with one line", "[cli]") {
+  check_error(run("--spp 0"), 2, "--spp");
+  check_error(run("--width -3"), 2, "--width");
+  check_error(run("--backend fast"), 2, "--backend");
+  check_error(run("--sky 1,2"), 2, "--sky");
+  check_error(run("--bogus"), 2, "bogus");
+  check_error(run("--out picture.jpg"), 2, ".jpg");
+  check_error(run("--width 65536 --height 65536 --backend cpu"), 2, "smaller image");
+}
+
+TEST_CASE("cli: bad scenes exit 3 with one line", "[cli]") {
+  check_error(run("--backend cpu --scene /nonexistent/scene.gltf"), 3, "/nonexistent/scene.gltf");
+  check_error(run("--backend cpu --scene builtin:nothing"), 3, "builtin:nothing");
+  check_error(run("--backend cpu --scene " + write("broken.gltf", "{ this is not json")), 3, "broken.gltf");
+  std::string required = R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_draco_mesh_compression"],
+    "extensionsRequired":["KHR_draco_mesh_compression"]})";
+  check_error(run("--backend cpu --scene " + write("draco.gltf", required)), 3, "KHR_draco_mesh_compression");
+  // 12 bytes of buffer, but an accessor of 3 VEC3 floats (36 bytes).
+  std::string past = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+    "bufferViews":[{"buffer":0,"byteLength":12}],
+    "buffers":[{"byteLength":12,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAA"}]})";
+  check_error(run("--backend cpu --scene " + write("past.gltf", past)), 3, "accessors[0]");
+}
+
+TEST_CASE("cli: an output that cannot be written exits 5 before rendering", "[cli]") {
+  check_error(run("--backend cpu --out /proc/no_such_place/image.png"), 5, "/proc/no_such_place/image.png");
+}
+
+TEST_CASE("cli: a failed run leaves an existing output file untouched", "[cli]") {
+  std::string out = write("keep.png", "the user's file");
+  Run r = run("--backend cpu --scene /nonexistent.gltf --out " + out);
+  CHECK(r.code == 3);
+  CHECK(read_file(out) == "the user's file");
+  r = run("--spp 0 --out " + out);
+  CHECK(r.code == 2);
+  CHECK(read_file(out) == "the user's file");
+  // No temporary files are left beside it either.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(out).parent_path())) files += e.path().filename().string()[0] == '.';
+  CHECK(files == 0);
+}
+
+TEST_CASE("cli: without a Vulkan driver, gpu exits 4 and auto falls back to the CPU", "[cli]") {
+  const std::string no_driver = "VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json";
+  check_error(run("--backend gpu --width 8 --height 8 --out " + (scratch() / "gpu.png").string(), no_driver), 4,
+              "--backend cpu");
+  Run r = run("--backend auto --width 8 --height 8 --out " + (scratch() / "auto.png").string(), no_driver);
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.err.find("falls back to the CPU") != std::string::npos);
+  CHECK(r.out.find("backend cpu") != std::string::npos);
+}

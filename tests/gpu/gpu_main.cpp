@@ -1,0 +1,23 @@
+// main() of pt_gpu_tests: the image tests again, on the Vulkan backend. Where no Vulkan
+// device exists it says so and returns 77, which ctest reports as skipped.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+
+#include "common/error.h"
+#include "gpu/gpu_backend.h"
+#include "stage1_raycast/kernels.h"
+#include "tests/support/test_render.h"
+
+int main(int argc, char** argv) {
+  try {
+    auto probe = pt::gpu::create_backend(stage1::kernels(), "");
+    std::printf("GPU tests run on '%s'\n", probe->device_name().c_str());
+  } catch (const pt::Error& e) {
+    std::printf("skipping the GPU tests: %s\n", e.what());
+    return 77;
+  }
+  pt::test::backend_under_test = "gpu";
+  return Catch::Session().run(argc, argv);
+}

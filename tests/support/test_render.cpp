@@ -1,0 +1,41 @@
+// Rendering from tests (see test_render.h).
+#include "tests/support/test_render.h"
+
+#include <cstdlib>
+
+#include "gpu/gpu_backend.h"
+
+namespace pt::test {
+
+std::string backend_under_test = "cpu";
+
+std::unique_ptr<Backend> make_backend(const std::string& kind, const StageKernels& kernels) {
+  if (kind == "gpu") return gpu::create_backend(kernels, "");
+  return make_cpu_backend(kernels);
+}
+
+std::uint32_t test_seed(std::uint32_t base) {
+  const char* offset = std::getenv("PT_TEST_SEED_OFFSET");
+  return base + (offset ? std::uint32_t(std::strtoul(offset, nullptr, 10)) : 0u);
+}
+
+RenderSettings settings(int width, int height, std::uint64_t spp, std::uint32_t seed) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.spp = spp;
+  s.seed = seed;
+  return s;
+}
+
+RenderResult render_on(const std::string& backend, const StageKernels& kernels, const Scene& scene,
+                       const RenderSettings& settings) {
+  std::unique_ptr<Backend> b = make_backend(backend, kernels);
+  return render(*b, scene, settings);
+}
+
+RenderResult render_on_test_backend(const StageKernels& kernels, const Scene& scene, const RenderSettings& settings) {
+  return render_on(backend_under_test, kernels, scene, settings);
+}
+
+}  // namespace pt::test
