@@ -5,6 +5,8 @@
 
 #include <glm/glm.hpp>
 
+#include "common/scene.h"
+
 namespace pt::analytic {
 
 // builtin:sphere — a sphere straight ahead of a perspective camera at the origin.
@@ -30,5 +32,46 @@ struct FurnaceScene {
   float emission = 1.0f;
   float albedo = 0.5f;
 };
+
+// builtin:floor_light — a diffuse floor (y = 0) under a square emitter facing down, seen
+// from below the emitter by an orthographic camera looking straight down. The emitter is
+// black, the floor flat: light reaches the floor once, and each point's radiance is
+// albedo / pi x irradiance, the irradiance by Lambert's polygon formula.
+struct FloorLightScene {
+  float floor_half = 20.0f;            // the floor spans [-h, h]^2 in x, z
+  float albedo = 0.5f;
+  float light_half = 0.5f;             // the emitter spans [-a, a]^2 in x, z ...
+  float light_height = 1.0f;           // ... at this height
+  glm::vec3 emission{4.0f, 4.0f, 4.0f};
+  float camera_height = 0.5f;          // between floor and emitter
+  float view_half = 1.5f;              // orthographic xmag = ymag
+};
+
+// builtin:mirror — a mirror facing an orthographic camera reflects an emitter behind the
+// camera straight back: every pixel is F0 x Le (Schlick's Fresnel at normal incidence).
+struct MirrorScene {
+  glm::vec3 f0{0.9f, 0.6f, 0.3f};
+  glm::vec3 emission{1.0f, 2.0f, 3.0f};
+  float emitter_z = 6.0f, camera_z = 5.0f;  // mirror at z = 0, facing +z
+};
+
+// builtin:glass_slab — a glass slab of index `ior` between an orthographic camera and a
+// uniform emitter: every pixel is Le times the slab's transmittance with all its internal
+// reflections, (1 - R) / (1 + R), R = ((ior - 1) / (ior + 1))^2.
+struct GlassSlabScene {
+  float ior = 1.5f;
+  float half_thickness = 0.5f;  // the slab spans z in [-t, t], x, y in [-3, 3]
+  float emission = 1.0f;        // emitter at z = -3, facing +z
+  float camera_z = 5.0f;
+};
+
+
+// The scenes themselves, for tests that vary a parameter (builtin:NAME uses the defaults).
+Scene make_floor_light(const FloorLightScene& a);
+Scene make_mirror(const MirrorScene& a);
+Scene make_glass_slab(const GlassSlabScene& a);
+Scene make_furnace(const FurnaceScene& a);
+Scene make_sphere(const SphereScene& a);
+Scene make_quad(const QuadScene& a);
 
 }  // namespace pt::analytic

@@ -5,6 +5,7 @@
 #include <new>
 
 #include "common/error.h"
+#include "common/scene_loading.h"
 
 namespace pt {
 
@@ -21,6 +22,31 @@ int guarded_main(const char* stage, const std::function<int()>& body) {
     std::fprintf(stderr, "%s: internal error: %s; please report it with the command line\n", stage, e.what());
     return 1;
   }
+}
+
+int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels& kernels,
+              GpuBackendFactory make_gpu) {
+  return guarded_main(stage.name, [&] {
+    // Parse: the options of CONTRACT.md.
+    std::optional<Options> options = parse_options(argc, argv, stage);
+    if (!options) return 0;  // --help
+    OutputFile out(options->out);  // checked now, written after the render
+    check_image_memory(options->width, options->height);
+    // Load: a glTF file or a built-in scene.
+    Scene scene = load_scene(options->scene);
+    if (!scene.point_lights.empty() && !stage.sees_point_lights) {
+      std::fprintf(stderr, "%s: the scene's %zu point light(s) are delta lights: only light sampling (stage4) sees them\n",
+                   stage.name, scene.point_lights.size());
+    }
+    // Render: passes on the CPU or the GPU.
+    std::unique_ptr<Backend> backend = make_backend(*options, kernels, make_gpu);
+    RenderResult result = render(*backend, scene, render_settings(*options, stage.name));
+    // Write: the image atomically, then the one summary line.
+    out.write(result.film.mean_rgb(), options->width, options->height,
+              image_metadata(stage.name, *options, *backend, result), options->exposure);
+    std::printf("%s\n", summary_line(stage.name, *backend, result).c_str());
+    return 0;
+  });
 }
 
 std::unique_ptr<Backend> make_backend(const Options& options, const StageKernels& kernels,
@@ -43,6 +69,8 @@ RenderSettings render_settings(const Options& o, const char* stage) {
   s.spp = o.spp;
   s.seed = o.seed;
   s.sky = o.sky;
+  s.roulette = o.roulette;
+  s.depth_cap = o.depth_cap;
   s.progress = true;
   s.label = stage;
   return s;
@@ -67,7 +95,17 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
   std::snprintf(line, sizeof line, "%s: backend %s (%s), %dx%d, %llu spp, %.3f s, %.3g samples/s", stage,
                 backend.kind().c_str(), backend.device_name().c_str(), f.width(), f.height(),
                 (unsigned long long)f.spp(), r.seconds, r.seconds > 0.0 ? samples / r.seconds : 0.0);
-  return line;
+  std::string s = line;
+  // Events that are rare and deserve a word: each is said once, with its count.
+  const RenderCounters& c = r.counters;
+  if (c.non_finite) {
+    std::uint32_t p = c.first_non_finite_pixel;
+    s += ", " + std::to_string(c.non_finite) + " NaN/Inf samples dropped (first at pixel " +
+         std::to_string(p % std::uint32_t(f.width())) + "," + std::to_string(p / std::uint32_t(f.width())) + ")";
+  }
+  if (c.zero_pdf) s += ", " + std::to_string(c.zero_pdf) + " paths ended by a zero pdf";
+  if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
+  return s;
 }
 
 }  // namespace pt

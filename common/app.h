@@ -16,6 +16,11 @@ namespace pt {
 // Creates the Vulkan backend (gpu/gpu_backend.h) or throws pt::Error(kExitNoDevice).
 using GpuBackendFactory = std::unique_ptr<Backend> (*)(const StageKernels& kernels, const std::string& device);
 
+// A whole stage program: parse the options, check the output, load the scene, render on
+// the chosen backend, write the image, print the summary line. Returns the exit code.
+int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels& kernels,
+              GpuBackendFactory make_gpu);
+
 // Runs body; a pt::Error (or any other exception) becomes "<stage>: <message>" on stderr
 // and its exit code.
 int guarded_main(const char* stage, const std::function<int()>& body);

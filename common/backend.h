@@ -22,6 +22,7 @@ struct KernelScene {
   const Sphere* spheres;
   const Material* materials;
   const PointLight* point_lights;
+  uint* counters;  // kCounterCount values, updated by the kernel
 };
 
 // A stage's kernel compiled as C++ (common/shaders/cpu_kernel_impl.h).
@@ -37,6 +38,12 @@ struct StageKernels {
   std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
 };
 
+// What a pass reports besides its image.
+struct PassResult {
+  double kernel_seconds = 0.0;       // the time the kernel ran (GPU: timestamp queries)
+  uint counters[kCounterCount] = {};  // the kernel's event counters (scene_types.h)
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -45,8 +52,8 @@ class Backend {
   // Makes the scene's arrays available to the kernel (an upload on the GPU).
   virtual void set_scene(const Scene& scene) = 0;
   // Renders params.image.w samples of every pixel into out (width * height values of
-  // render_pixel(): rgb sum, squared-luminance sum). Returns the kernel time in seconds.
-  virtual double run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
+  // render_pixel(): rgb sum, squared-luminance sum).
+  virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
 };
 
 std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads = 0);

@@ -1,9 +1,6 @@
-// Built-in scenes: the Cornell box (the default scene of every stage) and the analytic
-// scenes of the tests (analytic_scenes.h). Also load_scene(), which picks between a
-// built-in scene and a glTF file.
-#include <cmath>
-#include <functional>
-
+// Built-in scenes: the Cornell box (the default scene of every stage) and, by name, the
+// analytic scenes of the tests (analytic_scenes.cpp). Also load_scene(), which picks
+// between a built-in scene and a glTF file.
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/analytic_scenes.h"
@@ -13,34 +10,6 @@
 namespace pt {
 
 namespace {
-
-// A quad p0 p1 p2 p3 (counter-clockwise seen from its front) as two triangles.
-void add_quad(Scene& s, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, uint material) {
-  s.add_triangle(p0, p1, p2, material);
-  s.add_triangle(p0, p2, p3, material);
-}
-
-// An axis-aligned box of half-size `half` turned by `angle` about +Y, faces outwards.
-void add_box(Scene& s, glm::vec3 center, glm::vec3 half, float angle, uint material) {
-  glm::mat4 m = glm::translate(glm::mat4(1.0f), center) * glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 1, 0));
-  auto p = [&](float x, float y, float z) { return glm::vec3(m * glm::vec4(x * half.x, y * half.y, z * half.z, 1.0f)); };
-  add_quad(s, p(-1, -1, 1), p(1, -1, 1), p(1, 1, 1), p(-1, 1, 1), material);      // +z
-  add_quad(s, p(1, -1, -1), p(-1, -1, -1), p(-1, 1, -1), p(1, 1, -1), material);  // -z
-  add_quad(s, p(1, -1, 1), p(1, -1, -1), p(1, 1, -1), p(1, 1, 1), material);      // +x
-  add_quad(s, p(-1, -1, -1), p(-1, -1, 1), p(-1, 1, 1), p(-1, 1, -1), material);  // -x
-  add_quad(s, p(-1, 1, 1), p(1, 1, 1), p(1, 1, -1), p(-1, 1, -1), material);      // +y
-  add_quad(s, p(-1, -1, -1), p(1, -1, -1), p(1, -1, 1), p(-1, -1, 1), material);  // -y
-}
-
-// The inside of the cube [-h, h]^3, every face turned inwards.
-void add_room(Scene& s, float h, uint floor, uint ceiling, uint back, uint left, uint right, int front) {
-  add_quad(s, {-h, -h, h}, {h, -h, h}, {h, -h, -h}, {-h, -h, -h}, floor);   // y = -h, facing +y
-  add_quad(s, {-h, h, -h}, {h, h, -h}, {h, h, h}, {-h, h, h}, ceiling);     // y = +h, facing -y
-  add_quad(s, {-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h}, back);    // z = -h, facing +z
-  add_quad(s, {-h, -h, h}, {-h, -h, -h}, {-h, h, -h}, {-h, h, h}, left);    // x = -h, facing +x
-  add_quad(s, {h, -h, -h}, {h, -h, h}, {h, h, h}, {h, h, -h}, right);       // x = +h, facing -x
-  if (front >= 0) add_quad(s, {h, -h, h}, {-h, -h, h}, {-h, h, h}, {h, h, h}, uint(front));  // facing -z
-}
 
 Scene cornell() {
   Scene s;
@@ -61,42 +30,6 @@ Scene cornell() {
   return s;
 }
 
-Scene furnace() {
-  analytic::FurnaceScene f;
-  Scene s;
-  uint wall = s.add_material(make_diffuse(glm::vec3(f.albedo), glm::vec3(f.emission)));
-  add_room(s, f.half_size, wall, wall, wall, wall, wall, int(wall));
-  CameraDesc cam;
-  cam.yfov = 1.2f;
-  s.camera = cam;  // at the centre, looking down -Z
-  return s;
-}
-
-Scene sphere() {
-  analytic::SphereScene a;
-  Scene s;
-  s.add_sphere(a.center, a.radius, s.add_material(make_diffuse(a.color)));
-  CameraDesc cam;
-  cam.yfov = a.yfov;
-  s.camera = cam;
-  return s;
-}
-
-Scene quad() {
-  analytic::QuadScene a;
-  Scene s;
-  uint m = s.add_material(make_diffuse(a.color));
-  float c = std::cos(a.angle), n = std::sin(a.angle), h = a.half_size;
-  auto p = [&](float x, float y) { return glm::vec3(c * x - n * y, n * x + c * y, 0.0f); };
-  add_quad(s, p(-h, -h), p(h, -h), p(h, h), p(-h, h), m);
-  CameraDesc cam;
-  cam.kind = kCameraOrthographic;
-  cam.xmag = a.xmag, cam.ymag = a.ymag;
-  cam.to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 5.0f));
-  s.camera = cam;
-  return s;
-}
-
 struct Builtin {
   BuiltinInfo info;
   Scene (*make)();
@@ -105,9 +38,17 @@ struct Builtin {
 const std::vector<Builtin>& registry() {
   static const std::vector<Builtin> list = {
       {{"cornell", "the Cornell box with its ceiling light (the default scene)"}, cornell},
-      {{"furnace", "camera inside a closed box, walls emit 1 with albedo 0.5: Le/(1-albedo) = 2"}, furnace},
-      {{"sphere", "a diffuse sphere of radius 1 at distance 4 before a perspective camera"}, sphere},
-      {{"quad", "a square turned by 0.5 rad under an orthographic camera"}, quad},
+      {{"furnace", "camera inside a closed box, walls emit 1 with albedo 0.5: Le/(1-albedo) = 2"},
+       [] { return analytic::make_furnace({}); }},
+      {{"sphere", "a diffuse sphere of radius 1 at distance 4 before a perspective camera"},
+       [] { return analytic::make_sphere({}); }},
+      {{"quad", "a square turned by 0.5 rad under an orthographic camera"}, [] { return analytic::make_quad({}); }},
+      {{"floor_light", "a diffuse floor under a square emitter, seen from below it (Lambert's formula)"},
+       [] { return analytic::make_floor_light({}); }},
+      {{"mirror", "a mirror reflecting an emitter straight back to the camera: F0 x Le"},
+       [] { return analytic::make_mirror({}); }},
+      {{"glass_slab", "a glass slab (ior 1.5) before an emitter: Le (1 - R) / (1 + R)"},
+       [] { return analytic::make_glass_slab({}); }},
   };
   return list;
 }

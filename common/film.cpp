@@ -1,6 +1,7 @@
 // The film: double-precision accumulation of passes (see film.h).
 #include "common/film.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pt {
@@ -13,6 +14,11 @@ void Film::add_pass(std::span<const glm::vec4> pass, std::uint64_t samples) {
     for (int c = 0; c < 4; c++) sums_[4 * i + c] += double(pass[i][c]);
   }
   spp_ += samples;
+}
+
+void Film::merge(const Film& other) {
+  for (std::size_t i = 0; i < sums_.size(); i++) sums_[i] += other.sums_[i];
+  spp_ += other.spp_;
 }
 
 glm::dvec3 Film::mean(int x, int y) const {

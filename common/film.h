@@ -18,6 +18,9 @@ class Film {
   // Adds one pass: per pixel (rgb sum, squared-luminance sum) of `samples` samples.
   void add_pass(std::span<const glm::vec4> pass, std::uint64_t samples);
 
+  // Adds another film of the same size (independent samples of the same pixels).
+  void merge(const Film& other);
+
   int width() const { return width_; }
   int height() const { return height_; }
   std::uint64_t spp() const { return spp_; }

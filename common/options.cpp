@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "common/scene_loading.h"
+#include "common/shaders/scene_types.h"
 
 namespace pt {
 
@@ -49,6 +50,13 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
   app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
   app.add_option("--threads", o.threads, "CPU backend threads (0 = all cores)")->capture_default_str();
+  std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
+  if (stage.has_roulette) {
+    app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
+        ->capture_default_str()->check(CLI::IsMember({"fixed", "throughput"}));
+    app.add_option("--depth-cap", o.depth_cap, "bounces after which a path is stopped and counted (a safety net)")
+        ->capture_default_str()->check(CLI::Range(1u, 1000000u));
+  }
 
   try {
     app.parse(argc, argv);
@@ -60,6 +68,7 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.sky = parse_rgb(sky, "--sky");
+  o.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");
   return o;
 }

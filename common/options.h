@@ -14,6 +14,9 @@ struct StageInfo {
   const char* name;         // "stage1_raycast"
   const char* summary;      // one line: the stage and its equation
   std::uint64_t default_spp;
+  bool has_roulette = false;        // paths end by Russian roulette (stage2 onwards): --rr
+  std::uint32_t default_roulette = 0;  // kRouletteFixed (the article) or kRouletteThroughput
+  bool sees_point_lights = false;   // light sampling (stage4) sees delta lights
 };
 
 struct Options {
@@ -28,6 +31,8 @@ struct Options {
   glm::vec3 sky{0.0f};           // radiance of rays leaving the scene
   float exposure = 0.0f;         // stops, for .png output
   unsigned threads = 0;          // CPU threads, 0 = all cores
+  std::uint32_t roulette = 0;    // kRouletteFixed or kRouletteThroughput (--rr)
+  std::uint32_t depth_cap = 1000;  // a safety net far beyond what roulette reaches
 };
 
 // Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with

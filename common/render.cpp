@@ -35,12 +35,16 @@ class CpuBackend : public Backend {
 
   void set_scene(const Scene& scene) override {
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
-                         scene.point_lights.data()};
+                         scene.point_lights.data(), nullptr};
   }
 
-  double run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
+  PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     Clock::time_point start = Clock::now();
-    kernel_.bind(scene_, params);
+    PassResult result;
+    result.counters[kCounterNonFinitePixel] = kNoPixel;
+    KernelScene scene = scene_;
+    scene.counters = result.counters;
+    kernel_.bind(scene, params);
     // Rows are taken a few at a time from a shared counter: cheap load balancing.
     const uint height = params.image.y, rows_per_task = 4;
     std::atomic<uint> next_row{0};
@@ -53,7 +57,8 @@ class CpuBackend : public Backend {
     for (unsigned i = 1; i < threads_; i++) pool.emplace_back(work);
     work();
     for (std::thread& t : pool) t.join();
-    return seconds_since(start);
+    result.kernel_seconds = seconds_since(start);
+    return result;
   }
 
  private:
@@ -109,6 +114,13 @@ void check_image_memory(int width, int height, std::uint64_t bytes_per_pixel_on_
   (void)bytes_per_pixel_on_device;  // the GPU backend checks its own device's limits
 }
 
+void RenderCounters::add(const PassResult& pass) {
+  depth_cap += pass.counters[kCounterDepthCap];
+  zero_pdf += pass.counters[kCounterZeroPdf];
+  non_finite += pass.counters[kCounterNonFinite];
+  first_non_finite_pixel = std::min(first_non_finite_pixel, pass.counters[kCounterNonFinitePixel]);
+}
+
 FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   FrameParams p{};
   p.camera = make_camera(scene, float(s.width) / float(s.height));
@@ -133,7 +145,9 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
     std::uint64_t n = std::min(pass_samples(index), s.spp - done);
     params.image.z = uint(done);
     params.image.w = uint(n);
-    result.kernel_seconds += backend.run_pass(params, pass);
+    PassResult pass_result = backend.run_pass(params, pass);
+    result.kernel_seconds += pass_result.kernel_seconds;
+    result.counters.add(pass_result);
     result.film.add_pass(pass, n);
     done += n;
     double elapsed = seconds_since(start);

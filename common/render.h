@@ -27,10 +27,23 @@ struct RenderSettings {
   const char* label = "render";             // names the progress line
 };
 
+// "No pixel" in kCounterNonFinitePixel.
+constexpr std::uint32_t kNoPixel = 0xffffffffu;
+
+// The kernels' event counters, summed over the passes (scene_types.h, kCounter*).
+struct RenderCounters {
+  std::uint64_t depth_cap = 0;   // paths stopped by the depth cap
+  std::uint64_t zero_pdf = 0;    // paths ended by a zero pdf or a non-finite weight
+  std::uint64_t non_finite = 0;  // NaN or infinite samples dropped
+  std::uint32_t first_non_finite_pixel = kNoPixel;
+  void add(const PassResult& pass);
+};
+
 struct RenderResult {
   Film film;
   double seconds = 0.0;         // wall time of the passes
   double kernel_seconds = 0.0;  // time the kernels ran (GPU: timestamp queries)
+  RenderCounters counters;
 };
 
 // Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's

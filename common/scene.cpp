@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace pt {
 
 Bounds Scene::bounds() const {
@@ -29,6 +31,52 @@ void Scene::add_triangle(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, uint material
 
 void Scene::add_sphere(glm::vec3 center, float radius, uint material) {
   spheres.push_back(Sphere{glm::vec4(center, radius), glm::uvec4(material, kNoLight, 0u, 0u)});
+}
+
+// A quad p0 p1 p2 p3 (counter-clockwise seen from its front) as two triangles.
+void add_quad(Scene& s, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, uint material) {
+  s.add_triangle(p0, p1, p2, material);
+  s.add_triangle(p0, p2, p3, material);
+}
+
+// An axis-aligned box of half-size `half` turned by `angle` about +Y, faces outwards.
+void add_box(Scene& s, glm::vec3 center, glm::vec3 half, float angle, uint material) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), center) * glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 1, 0));
+  auto p = [&](float x, float y, float z) { return glm::vec3(m * glm::vec4(x * half.x, y * half.y, z * half.z, 1.0f)); };
+  add_quad(s, p(-1, -1, 1), p(1, -1, 1), p(1, 1, 1), p(-1, 1, 1), material);      // +z
+  add_quad(s, p(1, -1, -1), p(-1, -1, -1), p(-1, 1, -1), p(1, 1, -1), material);  // -z
+  add_quad(s, p(1, -1, 1), p(1, -1, -1), p(1, 1, -1), p(1, 1, 1), material);      // +x
+  add_quad(s, p(-1, -1, -1), p(-1, -1, 1), p(-1, 1, 1), p(-1, 1, -1), material);  // -x
+  add_quad(s, p(-1, 1, 1), p(1, 1, 1), p(1, 1, -1), p(-1, 1, -1), material);      // +y
+  add_quad(s, p(-1, -1, -1), p(1, -1, -1), p(1, -1, 1), p(-1, -1, 1), material);  // -y
+}
+
+// The inside of the cube [-h, h]^3, every face turned inwards.
+void add_room(Scene& s, float h, uint floor, uint ceiling, uint back, uint left, uint right, int front) {
+  add_quad(s, {-h, -h, h}, {h, -h, h}, {h, -h, -h}, {-h, -h, -h}, floor);   // y = -h, facing +y
+  add_quad(s, {-h, h, -h}, {h, h, -h}, {h, h, h}, {-h, h, h}, ceiling);     // y = +h, facing -y
+  add_quad(s, {-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h}, back);    // z = -h, facing +z
+  add_quad(s, {-h, -h, h}, {-h, -h, -h}, {-h, h, -h}, {-h, h, h}, left);    // x = -h, facing +x
+  add_quad(s, {h, -h, -h}, {h, -h, h}, {h, h, h}, {h, h, -h}, right);       // x = +h, facing -x
+  if (front >= 0) add_quad(s, {h, -h, h}, {-h, -h, h}, {-h, h, h}, {h, h, h}, uint(front));  // facing -z
+}
+
+// A camera on `position` looking straight down (-y), image up = -z.
+CameraDesc orthographic_down(glm::vec3 position, float half) {
+  CameraDesc cam;
+  cam.kind = kCameraOrthographic;
+  cam.xmag = half, cam.ymag = half;
+  cam.to_world = glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 0, -1, 0), glm::vec4(0, 1, 0, 0), glm::vec4(position, 1));
+  return cam;
+}
+
+// An orthographic camera on the +z axis looking down -z.
+CameraDesc orthographic_front(float z, float half) {
+  CameraDesc cam;
+  cam.kind = kCameraOrthographic;
+  cam.xmag = half, cam.ymag = half;
+  cam.to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, z));
+  return cam;
 }
 
 namespace {

@@ -43,6 +43,18 @@ struct Scene {
   void add_sphere(glm::vec3 center, float radius, uint material);
 };
 
+// Shape builders for built-in scenes: a quad p0 p1 p2 p3 (counter-clockwise seen from its
+// front) as two triangles; a box turned by `angle` about +Y, faces outwards; the inside
+// of the cube [-h, h]^3 with each face turned inwards (front < 0: no front wall).
+void add_quad(Scene& s, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, uint material);
+void add_box(Scene& s, glm::vec3 center, glm::vec3 half, float angle, uint material);
+void add_room(Scene& s, float h, uint floor, uint ceiling, uint back, uint left, uint right, int front);
+
+// Orthographic cameras of half-extent `half`: looking straight down (-y, image up = -z)
+// from `position`, or looking down -z from (0, 0, z).
+CameraDesc orthographic_down(glm::vec3 position, float half);
+CameraDesc orthographic_front(float z, float half);
+
 // Material constructors following CONTRACT.md's rules.
 Material make_diffuse(glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f), bool double_sided = false);
 Material make_metal(glm::vec3 f0, float roughness);  // roughness 0: mirror, else GGX alpha = r^2

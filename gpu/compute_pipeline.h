@@ -1,6 +1,6 @@
 // A compute pipeline made from embedded SPIR-V, with the one descriptor set that
 // common/shaders/bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
-// per-pass parameters (uniform), 5 the pass output (storage).
+// per-pass parameters (uniform), 5 the pass output, 6 the event counters (storage).
 #pragma once
 
 #include <cstdint>
@@ -10,7 +10,7 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 6;
+constexpr uint32_t kBindingCount = 7;
 constexpr uint32_t kParamsBinding = 4;
 
 class ComputePipeline {

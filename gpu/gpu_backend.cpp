@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/render.h"
 #include "common/scene.h"
 #include "gpu/compute_pipeline.h"
 
@@ -39,6 +40,7 @@ class GpuBackend : public Backend {
       check(vkCreateQueryPool(dev, &q, nullptr, &queries_), "creating a timestamp query pool");
     }
     params_ = Buffer(context_, sizeof(FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    counters_ = Buffer(context_, sizeof(PassResult::counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   }
 
   ~GpuBackend() override {
@@ -58,11 +60,15 @@ class GpuBackend : public Backend {
     upload(point_lights_, scene.point_lights.data(), scene.point_lights.size() * sizeof(PointLight));
   }
 
-  double run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
+  PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     const uint32_t width = params.image.x, height = params.image.y;
     ensure_output(VkDeviceSize(out.size_bytes()));
-    const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_, &params_, &output_};
+    const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_,
+                                            &params_,    &output_,  &counters_};
     pipeline_.bind_buffers(buffers);
+    PassResult result;
+    result.counters[kCounterNonFinitePixel] = kNoPixel;
+    counters_.write(result.counters, sizeof result.counters);
 
     // Rows per dispatch: a bounded amount of work, a whole number of workgroups.
     const VkPhysicalDeviceLimits& limits = context_.properties().limits;
@@ -74,16 +80,16 @@ class GpuBackend : public Backend {
       throw Error(kExitNoDevice, "image width " + std::to_string(width) + " needs more workgroups than device '" +
                                      context_.device_name() + "' allows; render a narrower image or use --backend cpu");
     }
-    double kernel_seconds = 0.0;
     for (uint32_t row0 = 0; row0 < height; row0 += uint32_t(rows)) {
       uint32_t n = uint32_t(std::min<uint64_t>(rows, height - row0));
       FrameParams chunk = params;
       chunk.options.w = row0;
       params_.write(&chunk, sizeof chunk);
-      kernel_seconds += dispatch(groups_x, (n + kGroupSize - 1) / kGroupSize);
+      result.kernel_seconds += dispatch(groups_x, (n + kGroupSize - 1) / kGroupSize);
     }
     output_.read(out.data(), out.size_bytes());
-    return kernel_seconds;
+    counters_.read(result.counters, sizeof result.counters);
+    return result;
   }
 
  private:
@@ -152,7 +158,7 @@ class GpuBackend : public Backend {
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
-  Buffer triangles_, spheres_, materials_, point_lights_, params_, output_;
+  Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_;
 };
 
 }  // namespace

@@ -10,6 +10,7 @@ inline const Sphere* spheres = nullptr;
 inline const Material* materials = nullptr;
 inline const PointLight* point_lights = nullptr;
 inline FrameParams params;
+inline uint* counters = nullptr;  // kCounterCount event counters, updated atomically
 inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
 #else
 layout(std430, set = 0, binding = 0) readonly buffer TriangleBuffer { Triangle triangles[]; };
@@ -18,6 +19,7 @@ layout(std430, set = 0, binding = 2) readonly buffer MaterialBuffer { Material m
 layout(std430, set = 0, binding = 3) readonly buffer PointLightBuffer { PointLight point_lights[]; };
 layout(std140, set = 0, binding = 4) uniform ParamsBuffer { FrameParams params; };
 layout(std430, set = 0, binding = 5) writeonly buffer OutputBuffer { vec4 pass_output[]; };
+layout(std430, set = 0, binding = 6) buffer CounterBuffer { uint counters[]; };
 uint rng_state;  // the random-number state of one invocation
 #endif
 

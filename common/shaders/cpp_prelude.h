@@ -9,6 +9,7 @@
 //   a global, thread_local here; scene arrays are globals: SSBOs in GLSL, pointers here.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -19,4 +20,16 @@ namespace pt::glsl {
 using namespace glm;
 using namespace pt;  // the layouts and constants of scene_types.h
 using uint = std::uint32_t;
+
+// GLSL's atomic built-ins on buffer memory (the kernel's event counters).
+inline uint atomicAdd(uint& mem, uint data) {
+  return std::atomic_ref<uint>(mem).fetch_add(data);
+}
+inline uint atomicMin(uint& mem, uint data) {
+  std::atomic_ref<uint> a(mem);
+  uint old = a.load();
+  while (data < old && !a.compare_exchange_weak(old, data)) {
+  }
+  return old;
+}
 }  // namespace pt::glsl

@@ -8,6 +8,7 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   spheres = scene.spheres;
   materials = scene.materials;
   point_lights = scene.point_lights;
+  counters = scene.counters;
   params = pass;
 }
 

@@ -20,6 +20,12 @@ vec4 render_pixel(uint x, uint y) {
     float fx = (float(x) + rng_next_float()) / float(params.image.x);
     float fy = (float(y) + rng_next_float()) / float(params.image.y);
     vec3 L = Li(camera_ray(params.camera, vec2(fx, fy)));
+    // A NaN or infinite sample would poison the pixel for ever: drop it and count it.
+    if (any(isnan(L)) || any(isinf(L))) {
+      atomicAdd(counters[kCounterNonFinite], 1u);
+      atomicMin(counters[kCounterNonFinitePixel], pixel_index);
+      continue;
+    }
     float lum = luminance(L);
     sum += L;
     sum_sq += lum * lum;

@@ -36,6 +36,13 @@ const uint kRouletteThroughput = 1u;  // continue with the path weight's largest
 
 const uint kNoLight = 0xffffffffu;
 
+// Event counters the kernels keep (bindings.glsl: counters[]), reported by the summary.
+const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a safety net)
+const uint kCounterZeroPdf = 1u;        // paths ended by a zero pdf or a non-finite weight
+const uint kCounterNonFinite = 2u;      // samples dropped because they were NaN or Inf
+const uint kCounterNonFinitePixel = 3u; // the lowest pixel index with a dropped sample
+const uint kCounterCount = 4u;
+
 struct Triangle {
   vec4 p0;     // xyz: vertex 0 (world space)
   vec4 p1;     // xyz: vertex 1

@@ -1,0 +1,80 @@
+// stage2_montecarlo: Monte Carlo path tracing as the article builds it (section "Алгоритм
+// трассировки путей по методу Монте Карло", Eq. 3): at every hit add the emission, then
+// continue in ONE new direction (N = 1), drawn uniformly over the hemisphere for diffuse
+// and glossy surfaces, or the reflected/refracted direction of mirrors and glass; paths
+// end by Russian roulette. Written in the GLSL/C++ subset: both backends run this file.
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/rng.glsl"
+#include "common/shaders/camera.glsl"
+#include "common/shaders/intersect.glsl"
+#include "common/shaders/sampling.glsl"
+#include "common/shaders/bsdf.glsl"
+#include "common/shaders/spawn.glsl"
+
+// Eq. (3) with N = 1: Lout = Le + (2 pi / N) f Lin cos. The article prints 1/(2 pi N)
+// (erratum 1); the uniform hemisphere pdf is 1/(2 pi), so the factor is 2 pi. The tests
+// build this file once with the printed factor to show the furnace test catches it.
+#ifndef PT_EQ3_FACTOR
+#define PT_EQ3_FACTOR (2.0f * kPi)
+#endif
+
+float max_component(vec3 v) {
+  return max(v.x, max(v.y, v.z));
+}
+
+// Russian roulette: returns what a surviving path is multiplied by (1 / p), or 0 to end
+// it. The article's rule continues with p = 1/2 and must divide by it (erratum 3); it is
+// unbiased (erratum 4) but its variance is infinite for albedo above 0.61 with uniform
+// sampling, so --rr throughput continues with p = the path weight's largest component.
+float russian_roulette(vec3 beta, uint mode) {
+  float p = mode == kRouletteFixed ? 0.5f : min(1.0f, max_component(beta));
+  if (!(p > 0.0f) || rng_next_float() >= p) return 0.0f;
+  return 1.0f / p;
+}
+
+vec3 Li(Ray ray) {
+  vec3 L = vec3(0.0f);     // radiance gathered along the path
+  vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
+  for (uint depth = 0u;; depth++) {
+    if (depth == params.options.z) {  // a safety net far beyond what roulette reaches
+      atomicAdd(counters[kCounterDepthCap], 1u);
+      break;
+    }
+    Hit hit = intersect_scene(ray, kInfinity);
+    if (hit.kind == kPrimNone) {
+      L += beta * vec3(params.sky);
+      break;
+    }
+    Surface surface = surface_at(ray, hit);
+    Material material = materials[surface.material];
+    // Le: in the article's Eq. (3) every hit adds its emission.
+    L += beta * emitted_radiance(material, surface.front);
+
+    // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
+    Frame frame = make_frame(surface.front ? surface.n : -surface.n);
+    vec3 wo = frame_to_local(frame, -ray.dir);
+    uint lobe = choose_lobe(material, rng_next_float());
+    vec3 wi;
+    if (lobe == kMaterialMirror) {
+      DeltaBounce bounce = sample_mirror(material, wo);
+      wi = bounce.wi;
+      beta *= bounce.weight;
+    } else if (lobe == kMaterialGlass) {
+      DeltaBounce bounce = sample_glass(material, wo, surface.front, rng_next_float());
+      wi = bounce.wi;
+      beta *= bounce.weight;
+    } else {
+      // Eq. (3): one direction uniform over the hemisphere, weighted (2 pi) f cos.
+      wi = sample_uniform_hemisphere(rng_next_vec2());
+      beta *= PT_EQ3_FACTOR * eval_lobe(lobe, material, wo, wi) * wi.z;
+    }
+
+    float survive = russian_roulette(beta, params.options.y);
+    if (survive == 0.0f) break;
+    beta *= survive;
+    ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+  }
+  return L;
+}
+
+#include "common/shaders/render_pixel.glsl"

@@ -1,0 +1,54 @@
+// Checks of a rendered image against the image known in closed form, with tolerances
+// derived from the variance the film estimated (never tuned to a seed): every pixel by a
+// z-test of its luminance, Šidák-corrected over the image; the image mean per channel by
+// a t-test over independent batches.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "common/backend.h"
+#include "common/film.h"
+#include "common/render.h"
+#include "common/scene.h"
+
+namespace pt::test {
+
+using ExpectedImage = std::vector<glm::dvec3>;  // width * height, row 0 on top
+
+// Per pixel, the luminance of the mean against the expected one, in units of the pixel's
+// estimated standard error. Path-tracing estimates are skewed (rare bright paths), so the
+// normal distribution is trusted only at moderate z: the image passes when
+//  - no more pixels lie outside their 99% interval than Binomial(pixels, 0.01) allows at
+//    level alpha (a bias shows up as many such pixels), and
+//  - no pixel lies beyond 2 x the Šidák-corrected z (a single broken pixel shows up).
+// Where every sample of a pixel was the same its variance reads 0; then an outcome of the
+// probability that all n samples miss with probability alpha_pixel is allowed for.
+struct PixelReport {
+  int outside = 0;       // pixels outside their 99% interval
+  int allowed = 0;       // how many of those chance explains at level alpha
+  double worst = 0.0;    // largest |error| / (hard bound); <= 1 passes
+  bool passed() const { return outside <= allowed && worst <= 1.0; }
+};
+PixelReport check_pixels(const Film& film, const ExpectedImage& expected, double alpha = 1e-3);
+
+// The image mean of each channel, over batches rendered with independent seeds, against
+// the expected image's mean: a two-sided t-test at level alpha (Šidák over 3 channels).
+// Returns the largest |t| divided by its critical value (<= 1 passes).
+double channel_means_ratio(const std::vector<Film>& batches, const ExpectedImage& expected, double alpha = 1e-3);
+
+// Renders `batches` films of settings.spp each with seeds seed, seed + 1, ...
+std::vector<Film> render_batches(const StageKernels& kernels, const Scene& scene, RenderSettings settings,
+                                 int batches);
+
+// Expected image from a function of the pixel's screen rectangle [x0,x1] x [y0,y1] in
+// [-1, 1] screen coordinates (y up): the function averages over the rectangle itself.
+ExpectedImage expected_image(int width, int height,
+                             const std::function<glm::dvec3(double x0, double y0, double x1, double y1)>& pixel);
+
+// Student's t quantile: P(|T| > t) = alpha for dof degrees of freedom.
+double student_two_sided_quantile(double alpha, int dof);
+
+}  // namespace pt::test
