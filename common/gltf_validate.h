@@ -1,0 +1,51 @@
+// Checks of a glTF 2.0 file that tinygltf leaves to its user, for the loader of
+// CONTRACT.md "Scenes" (gltf_loader.cpp): the file and its JSON before tinygltf reads
+// them, references and the node tree after, and every accessor a triangle reads.
+// Not part of the article: the machinery that turns a malformed file into one line.
+#pragma once
+
+#include <cfloat>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+namespace pt::gltf {
+
+// The usual advice at the end of a message about a malformed file.
+inline constexpr const char* kReexport = "the file is truncated or malformed; re-export it";
+
+// Throws pt::Error(kExitBadScene, "<file>: <message>"), the message made one line.
+[[noreturn]] void fail(const std::string& file, const std::string& message);
+
+// A JSON number as a finite 32-bit float within [lo, hi]; `where` is its JSON path.
+float checked_float(const std::string& file, double value, const std::string& where, double lo = -FLT_MAX,
+                    double hi = FLT_MAX);
+
+struct SourceFile {
+  std::vector<unsigned char> bytes;  // the whole file (a .glb cut to its stated length)
+  bool binary = false;               // .glb
+  std::string base_dir;              // the folder buffer URIs are relative to ("" = cwd)
+};
+
+// Reads the file and checks what tinygltf would otherwise trust: the GLB container, the
+// JSON syntax and integers, buffer and image URIs (they may not leave the scene's
+// folder) and the bufferViews of images.
+SourceFile read_and_precheck(const std::string& path);
+
+// Checks extensions, every reference between arrays and the node tree (one parent per
+// node, no cycles, scenes list roots only). Returns each node's parent (-1 for a root).
+std::vector<int> check_model(const tinygltf::Model& model, const std::string& file);
+
+// The POSITION accessor of a triangle primitive, checked and read; `what` names it in
+// messages, e.g. "accessors[2] (POSITION of meshes[0].primitives[0])".
+std::vector<glm::vec3> read_positions(const tinygltf::Model& model, int accessor, const std::string& file,
+                                      const std::string& what);
+
+// The indices accessor of a triangle primitive, each checked against vertex_count.
+std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::size_t vertex_count,
+                                        const std::string& file, const std::string& what);
+
+}  // namespace pt::gltf
