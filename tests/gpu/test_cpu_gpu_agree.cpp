@@ -6,6 +6,7 @@
 
 #include "common/scene_loading.h"
 #include "stage1_raycast/kernels.h"
+#include "stage2_montecarlo/kernels.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
@@ -35,6 +36,17 @@ TEST_CASE("stage1: CPU and GPU images of the same seed agree to rounding", "[sta
     RenderSettings s = settings(96, 72, 8, 21);
     RenderResult cpu = render_on("cpu", stage1::kernels(), scene, s);
     RenderResult gpu = render_on("gpu", stage1::kernels(), scene, s);
+    INFO("scene " << name);
+    CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
+  }
+}
+
+TEST_CASE("stage2: CPU and GPU images of the same seed agree to rounding", "[stage2][gpu]") {
+  for (const char* name : {"cornell", "furnace", "glass_slab"}) {
+    Scene scene = make_builtin_scene(name);
+    RenderSettings s = settings(48, 36, 4, 22);
+    RenderResult cpu = render_on("cpu", stage2::kernels(), scene, s);
+    RenderResult gpu = render_on("gpu", stage2::kernels(), scene, s);
     INFO("scene " << name);
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
   }
