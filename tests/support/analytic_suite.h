@@ -1,0 +1,29 @@
+// The analytic images every path-tracing stage (2, 3, 4) must reproduce: the same scenes
+// and expected values for each stage's kernel, on the backend under test. Each function
+// CHECKs its scene against the closed form with variance-derived tolerances.
+#pragma once
+
+#include <cstdint>
+
+#include "common/backend.h"
+#include "common/render.h"
+#include "tests/support/image_checks.h"
+
+namespace pt::test {
+
+// Renders 8 independent batches, then: every pixel (check_pixels) and every channel's
+// image mean (channel_means_ratio) against the expected image.
+void check_scene(const StageKernels& kernels, const Scene& scene, const ExpectedImage& expected, RenderSettings s);
+
+// Furnace box of the given albedo, emission 1: every pixel Le / (1 - albedo).
+void check_furnace(const StageKernels& kernels, float albedo, std::uint32_t roulette, std::uint32_t seed);
+// A diffuse sphere under a uniform sky: albedo x sky on it, the sky elsewhere.
+void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed);
+// A diffuse floor under a square light: Lambert's polygon formula, pixel by pixel.
+void check_floor_light(const StageKernels& kernels, std::uint32_t seed);
+// A mirror reflecting an emitter straight back: F0 x Le.
+void check_mirror(const StageKernels& kernels, std::uint32_t seed);
+// A glass slab before an emitter: Le (1 - R) / (1 + R); invisible at ior 1.
+void check_glass_slab(const StageKernels& kernels, float ior, std::uint32_t seed);
+
+}  // namespace pt::test
