@@ -133,7 +133,7 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
 }
 
 RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& s) {
-  RenderResult result{Film(s.width, s.height)};
+  RenderResult result{Film(s.width, s.height), 0.0, 0.0, {}};
   backend.set_scene(scene);
   FrameParams params = make_frame_params(scene, s);
   std::vector<glm::vec4> pass(std::size_t(s.width) * std::size_t(s.height));

@@ -29,18 +29,18 @@ float fresnel_dielectric(float cos_i, float eta) {
   return 0.5f * (r_parl * r_parl + r_perp * r_perp);
 }
 
-// GGX (Trowbridge-Reitz) distribution of microfacet normals h (local, h.z > 0).
+// GGX (Trowbridge-Reitz) distribution of microfacet normals h (local, h.z > 0):
+// alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2). sin^2 is taken as x^2 + y^2, not 1 - cos^2,
+// which cancels to nothing near the peak when alpha is small (the chi-square test found it).
 float ggx_d(vec3 h, float alpha) {
   float a2 = alpha * alpha;
-  float c2 = h.z * h.z;
-  float d = c2 * (a2 - 1.0f) + 1.0f;
+  float d = a2 * h.z * h.z + (h.x * h.x + h.y * h.y);
   return a2 / (kPi * d * d);
 }
 
 // Smith's Lambda for GGX: the masking of direction w is 1 / (1 + Lambda(w)).
 float ggx_lambda(vec3 w, float alpha) {
-  float c2 = w.z * w.z;
-  float t2 = max(0.0f, 1.0f - c2) / max(c2, 1e-30f);
+  float t2 = (w.x * w.x + w.y * w.y) / max(w.z * w.z, 1e-30f);  // tan^2 theta
   return 0.5f * (sqrt(1.0f + alpha * alpha * t2) - 1.0f);
 }
 
@@ -55,6 +55,37 @@ vec3 ggx_conductor_brdf(vec3 f0, float alpha, vec3 wo, vec3 wi) {
   vec3 h = normalize(wo + wi);
   vec3 F = schlick_fresnel(f0, dot(wo, h));
   return F * (ggx_d(h, alpha) * ggx_g2(wo, wi, alpha) / (4.0f * wo.z * wi.z));
+}
+
+// GGX visible-normal sampling (Heitz, "Sampling the GGX Distribution of Visible Normals",
+// JCGT 2018): a microfacet normal h seen from wo, drawn in proportion to its projected
+// area; the reflected direction's pdf is then G1(wo) D(h) / (4 wo.z).
+vec3 sample_ggx_vndf(vec3 wo, float alpha, vec2 u) {
+  // Stretch to the hemisphere configuration (alpha = 1).
+  vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+  float len2 = vh.x * vh.x + vh.y * vh.y;
+  vec3 t1 = len2 > 0.0f ? vec3(-vh.y, vh.x, 0.0f) * inversesqrt(len2) : vec3(1.0f, 0.0f, 0.0f);
+  vec3 t2 = cross(vh, t1);
+  // A point on the projected disk, squeezed onto the visible half.
+  float r = sqrt(u.x);
+  float phi = 2.0f * kPi * u.y;
+  float p1 = r * cos(phi);
+  float p2 = r * sin(phi);
+  float s = 0.5f * (1.0f + vh.z);
+  p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * p2;
+  vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+  // Unstretch.
+  return normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0f, nh.z)));
+}
+
+// The pdf (solid angle) of wi = reflect(-wo, h) with h from sample_ggx_vndf.
+float ggx_vndf_pdf(vec3 wo, vec3 wi, float alpha) {
+  vec3 h = wo + wi;
+  if (wo.z <= 0.0f || dot(h, h) == 0.0f) return 0.0f;
+  h = normalize(h);
+  if (h.z <= 0.0f) return 0.0f;
+  float g1 = 1.0f / (1.0f + ggx_lambda(wo, alpha));
+  return g1 * ggx_d(h, alpha) / (4.0f * wo.z);
 }
 
 vec3 lambert_brdf(vec3 albedo, vec3 wo, vec3 wi) {
@@ -75,6 +106,29 @@ uint choose_lobe(Material m, float u) {
 vec3 eval_lobe(uint lobe, Material m, vec3 wo, vec3 wi) {
   if (lobe == kMaterialConductor) return ggx_conductor_brdf(vec3(m.base_color), m.params.y, wo, wi);
   return lambert_brdf(vec3(m.base_color), wo, wi);
+}
+
+// A direction drawn for a non-delta lobe in proportion to (roughly) f cos, and its pdf
+// (stage3, Eq. 4: importance sampling): cosine for diffuse, GGX visible normals for metal.
+struct LobeSample {
+  vec3 wi;    // local direction (may point below the surface: then f = 0)
+  float pdf;  // solid-angle density of wi
+};
+
+LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
+  if (lobe == kMaterialConductor) {
+    float alpha = m.params.y;
+    vec3 h = sample_ggx_vndf(wo, alpha, u);
+    vec3 wi = 2.0f * dot(wo, h) * h - wo;
+    return LobeSample(wi, ggx_vndf_pdf(wo, wi, alpha));
+  }
+  vec3 wi = sample_cosine_hemisphere(u);
+  return LobeSample(wi, cosine_hemisphere_pdf(wi.z));
+}
+
+float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
+  if (lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.params.y);
+  return cosine_hemisphere_pdf(wi.z);
 }
 
 bool is_delta_lobe(uint lobe) {

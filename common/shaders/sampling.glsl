@@ -47,6 +47,24 @@ vec2 invert_uniform_hemisphere(vec3 w) {
   return vec2(w.z, phi / (2.0f * kPi));
 }
 
+// Cosine-weighted over the hemisphere z > 0 (Malley's method: uniform on the disk, lifted
+// up): pdf cos(theta) / pi, the diffuse lobe's own shape (stage3, Eq. 4).
+vec3 sample_cosine_hemisphere(vec2 u) {
+  float r = sqrt(u.x);
+  float phi = 2.0f * kPi * u.y;
+  return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0f, 1.0f - u.x)));
+}
+
+float cosine_hemisphere_pdf(float cos_theta) {
+  return max(cos_theta, 0.0f) * (1.0f / kPi);
+}
+
+vec2 invert_cosine_hemisphere(vec3 w) {
+  float phi = atan(w.y, w.x);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  return vec2(w.x * w.x + w.y * w.y, phi / (2.0f * kPi));
+}
+
 vec2 rng_next_vec2() {
   float a = rng_next_float();
   return vec2(a, rng_next_float());

@@ -1,0 +1,24 @@
+// Russian roulette, the article's way to end paths without bias (stages 2-4): a path
+// continues with probability p and the survivor is divided by p (erratum 3: the printed
+// text "adds 1/2 multipliers"; erratum 4: it adds variance, not bias). The article's
+// fixed p = 1/2 has infinite variance for albedo above 0.61 with uniform sampling, so
+// kRouletteThroughput continues with p = the path weight's largest component instead.
+#ifndef PT_ROULETTE_GLSL
+#define PT_ROULETTE_GLSL
+
+float max_component(vec3 v) {
+  return max(v.x, max(v.y, v.z));
+}
+
+bool is_finite(vec3 v) {
+  return !any(isnan(v)) && !any(isinf(v));
+}
+
+// Returns what a surviving path is multiplied by (1 / p), or 0 to end it.
+float russian_roulette(vec3 beta, uint mode) {
+  float p = mode == kRouletteFixed ? 0.5f : min(1.0f, max_component(beta));
+  if (!(p > 0.0f) || rng_next_float() >= p) return 0.0f;
+  return 1.0f / p;
+}
+
+#endif  // PT_ROULETTE_GLSL

@@ -1,0 +1,67 @@
+// stage3_importance: BRDF importance sampling (the article's section "Метод выборки по
+// значимости", Eq. 4): the path tracer of stage2, but each new direction is drawn in
+// proportion to the BRDF (cosine lobe for diffuse, GGX visible normals for metal, the
+// delta direction of mirror and glass) and each contribution is divided by its pdf.
+// Written in the GLSL/C++ subset: both backends run this file.
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/rng.glsl"
+#include "common/shaders/camera.glsl"
+#include "common/shaders/intersect.glsl"
+#include "common/shaders/sampling.glsl"
+#include "common/shaders/bsdf.glsl"
+#include "common/shaders/spawn.glsl"
+#include "common/shaders/roulette.glsl"
+
+vec3 Li(Ray ray) {
+  vec3 L = vec3(0.0f);     // radiance gathered along the path
+  vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
+  for (uint depth = 0u;; depth++) {
+    if (depth == params.options.z) {  // a safety net far beyond what roulette reaches
+      atomicAdd(counters[kCounterDepthCap], 1u);
+      break;
+    }
+    Hit hit = intersect_scene(ray, kInfinity);
+    if (hit.kind == kPrimNone) {
+      L += beta * vec3(params.sky);
+      break;
+    }
+    Surface surface = surface_at(ray, hit);
+    Material material = materials[surface.material];
+    // Le: as in Eq. (3), every hit adds its emission.
+    L += beta * emitted_radiance(material, surface.front);
+
+    // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
+    Frame frame = make_frame(surface.front ? surface.n : -surface.n);
+    vec3 wo = frame_to_local(frame, -ray.dir);
+    uint lobe = choose_lobe(material, rng_next_float());
+    vec3 wi;
+    if (lobe == kMaterialMirror) {
+      DeltaBounce bounce = sample_mirror(material, wo);
+      wi = bounce.wi;
+      beta *= bounce.weight;
+    } else if (lobe == kMaterialGlass) {
+      DeltaBounce bounce = sample_glass(material, wo, surface.front, rng_next_float());
+      wi = bounce.wi;
+      beta *= bounce.weight;
+    } else {
+      // Eq. (4), corrected (erratum 2): draw wi with density pdf, weight f cos / pdf.
+      LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());
+      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
+      // Never divide by a zero pdf: such a sample ends the path, and is counted.
+      if (!(s.pdf > 0.0f) || !is_finite(weight)) {
+        atomicAdd(counters[kCounterZeroPdf], 1u);
+        break;
+      }
+      wi = s.wi;
+      beta *= weight;
+    }
+
+    float survive = russian_roulette(beta, params.options.y);
+    if (survive == 0.0f) break;
+    beta *= survive;
+    ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+  }
+  return L;
+}
+
+#include "common/shaders/render_pixel.glsl"
