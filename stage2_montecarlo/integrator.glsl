@@ -10,6 +10,7 @@
 #include "common/shaders/sampling.glsl"
 #include "common/shaders/bsdf.glsl"
 #include "common/shaders/spawn.glsl"
+#include "common/shaders/roulette.glsl"
 
 // Eq. (3) with N = 1: Lout = Le + (2 pi / N) f Lin cos. The article prints 1/(2 pi N)
 // (erratum 1); the uniform hemisphere pdf is 1/(2 pi), so the factor is 2 pi. The tests
@@ -17,20 +18,6 @@
 #ifndef PT_EQ3_FACTOR
 #define PT_EQ3_FACTOR (2.0f * kPi)
 #endif
-
-float max_component(vec3 v) {
-  return max(v.x, max(v.y, v.z));
-}
-
-// Russian roulette: returns what a surviving path is multiplied by (1 / p), or 0 to end
-// it. The article's rule continues with p = 1/2 and must divide by it (erratum 3); it is
-// unbiased (erratum 4) but its variance is infinite for albedo above 0.61 with uniform
-// sampling, so --rr throughput continues with p = the path weight's largest component.
-float russian_roulette(vec3 beta, uint mode) {
-  float p = mode == kRouletteFixed ? 0.5f : min(1.0f, max_component(beta));
-  if (!(p > 0.0f) || rng_next_float() >= p) return 0.0f;
-  return 1.0f / p;
-}
 
 vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path

@@ -7,6 +7,7 @@
 #include "common/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "stage2_montecarlo/kernels.h"
+#include "stage3_importance/kernels.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
@@ -28,26 +29,29 @@ double agreeing_fraction(const Film& a, const Film& b) {
   return double(agree) / (double(a.width()) * a.height());
 }
 
-}  // namespace
-
-TEST_CASE("stage1: CPU and GPU images of the same seed agree to rounding", "[stage1][gpu]") {
-  for (const char* name : {"cornell", "sphere", "quad"}) {
+// Renders each scene on both backends with the same seed and spp and compares.
+void check_agreement(const StageKernels& kernels, std::initializer_list<const char*> scenes, RenderSettings s) {
+  for (const char* name : scenes) {
     Scene scene = make_builtin_scene(name);
-    RenderSettings s = settings(96, 72, 8, 21);
-    RenderResult cpu = render_on("cpu", stage1::kernels(), scene, s);
-    RenderResult gpu = render_on("gpu", stage1::kernels(), scene, s);
-    INFO("scene " << name);
+    RenderResult cpu = render_on("cpu", kernels, scene, s);
+    RenderResult gpu = render_on("gpu", kernels, scene, s);
+    INFO(kernels.name << ", scene " << name);
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
   }
 }
 
+}  // namespace
+
+TEST_CASE("stage1: CPU and GPU images of the same seed agree to rounding", "[stage1][gpu]") {
+  check_agreement(stage1::kernels(), {"cornell", "sphere", "quad"}, settings(96, 72, 8, 21));
+}
+
 TEST_CASE("stage2: CPU and GPU images of the same seed agree to rounding", "[stage2][gpu]") {
-  for (const char* name : {"cornell", "furnace", "glass_slab"}) {
-    Scene scene = make_builtin_scene(name);
-    RenderSettings s = settings(48, 36, 4, 22);
-    RenderResult cpu = render_on("cpu", stage2::kernels(), scene, s);
-    RenderResult gpu = render_on("gpu", stage2::kernels(), scene, s);
-    INFO("scene " << name);
-    CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
-  }
+  check_agreement(stage2::kernels(), {"cornell", "furnace", "glass_slab"}, settings(48, 36, 4, 22));
+}
+
+TEST_CASE("stage3: CPU and GPU images of the same seed agree to rounding", "[stage3][gpu]") {
+  RenderSettings s = settings(48, 36, 4, 23);
+  s.roulette = kRouletteThroughput;
+  check_agreement(stage3::kernels(), {"cornell", "furnace", "glass_slab", "mirror"}, s);
 }

@@ -54,7 +54,7 @@ void check_floor_light(const StageKernels& kernels, std::uint32_t seed) {
     };
     return glm::dvec3(a.emission) * rect_average(x0, y0, x1, y1, radiance, &a);
   });
-  check_scene(kernels, analytic::make_floor_light(a), expected, settings(size, size, 512, seed));
+  check_scene(kernels, analytic::make_floor_light(a), expected, settings(size, size, 1024, seed));
 }
 
 void check_mirror(const StageKernels& kernels, std::uint32_t seed) {

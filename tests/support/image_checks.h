@@ -24,8 +24,10 @@ using ExpectedImage = std::vector<glm::dvec3>;  // width * height, row 0 on top
 //  - no more pixels lie outside their 99% interval than Binomial(pixels, 0.01) allows at
 //    level alpha (a bias shows up as many such pixels), and
 //  - no pixel lies beyond 2 x the Šidák-corrected z (a single broken pixel shows up).
-// Where every sample of a pixel was the same its variance reads 0; then an outcome of the
-// probability that all n samples miss with probability alpha_pixel is allowed for.
+// A rare outcome is seen a handful of times or never, and its share of the variance is
+// then mis-estimated: both bounds allow, where every sample was the same, and the hard
+// bound always, for an outcome as large as the pixel with probability -ln(alpha_pixel)/n
+// (what n samples miss with probability alpha_pixel).
 struct PixelReport {
   int outside = 0;       // pixels outside their 99% interval
   int allowed = 0;       // how many of those chance explains at level alpha
