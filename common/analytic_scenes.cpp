@@ -15,6 +15,18 @@ Scene make_furnace(const FurnaceScene& f) {
   CameraDesc cam;
   cam.yfov = 1.2f;
   s.camera = cam;  // at the centre, looking down -Z
+  build_light_table(s);
+  return s;
+}
+
+Scene make_furnace_sphere(const FurnaceSphereScene& f) {
+  Scene s;
+  s.add_sphere(glm::vec3(0.0f), f.radius,
+               s.add_material(make_diffuse(glm::vec3(f.albedo), glm::vec3(f.emission), true)));
+  CameraDesc cam;
+  cam.yfov = 1.2f;
+  s.camera = cam;  // at the centre, looking down -Z
+  build_light_table(s);
   return s;
 }
 
@@ -24,8 +36,13 @@ Scene make_floor_light(const FloorLightScene& a) {
   uint light = s.add_material(make_diffuse(glm::vec3(0.0f), a.emission));
   float h = a.floor_half, l = a.light_half, y = a.light_height;
   add_quad(s, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, floor);   // facing +y
-  add_quad(s, {-l, y, -l}, {l, y, -l}, {l, y, l}, {-l, y, l}, light);   // facing -y
+  if (a.triangle) {
+    s.add_triangle({-l, y, -l}, {l, y, -l}, {l, y, l}, light);  // facing -y
+  } else {
+    add_quad(s, {-l, y, -l}, {l, y, -l}, {l, y, l}, {-l, y, l}, light);  // facing -y
+  }
   s.camera = orthographic_down({0.0f, a.camera_height, 0.0f}, a.view_half);
+  build_light_table(s);
   return s;
 }
 
@@ -37,6 +54,7 @@ Scene make_mirror(const MirrorScene& a) {
   add_quad(s, {-m, -m, 0}, {m, -m, 0}, {m, m, 0}, {-m, m, 0}, mirror);  // facing +z
   add_quad(s, {e, -e, z}, {-e, -e, z}, {-e, e, z}, {e, e, z}, light);    // facing -z
   s.camera = orthographic_front(a.camera_z, 1.0f);
+  build_light_table(s);
   return s;
 }
 
@@ -48,6 +66,7 @@ Scene make_glass_slab(const GlassSlabScene& a) {
   float e = 6.0f;
   add_quad(s, {-e, -e, -3}, {e, -e, -3}, {e, e, -3}, {-e, e, -3}, light);  // facing +z
   s.camera = orthographic_front(a.camera_z, 1.0f);
+  build_light_table(s);
   return s;
 }
 
@@ -57,6 +76,7 @@ Scene make_sphere(const SphereScene& a) {
   CameraDesc cam;
   cam.yfov = a.yfov;
   s.camera = cam;
+  build_light_table(s);
   return s;
 }
 
@@ -71,6 +91,29 @@ Scene make_quad(const QuadScene& a) {
   cam.xmag = a.xmag, cam.ymag = a.ymag;
   cam.to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 5.0f));
   s.camera = cam;
+  build_light_table(s);
+  return s;
+}
+
+Scene make_point_floor(const PointFloorScene& a) {
+  Scene s;
+  uint floor = s.add_material(make_diffuse(glm::vec3(a.floor.albedo)));
+  float h = a.floor.floor_half;
+  add_quad(s, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, floor);
+  s.point_lights.push_back(PointLight{glm::vec4(0.0f, a.floor.light_height, 0.0f, 1.0f), glm::vec4(a.intensity, 0.0f)});
+  s.camera = orthographic_down({0.0f, a.floor.camera_height, 0.0f}, a.floor.view_half);
+  build_light_table(s);
+  return s;
+}
+
+Scene make_point_in_sphere(const PointInSphereScene& a) {
+  Scene s;
+  s.add_sphere(glm::vec3(0.0f), a.radius, s.add_material(make_diffuse(glm::vec3(a.albedo))));
+  s.point_lights.push_back(PointLight{glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(glm::vec3(a.intensity), 0.0f)});
+  CameraDesc cam;
+  cam.yfov = 1.2f;
+  s.camera = cam;  // at the centre, looking down -Z
+  build_light_table(s);
   return s;
 }
 

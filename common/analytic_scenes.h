@@ -33,6 +33,15 @@ struct FurnaceScene {
   float albedo = 0.5f;
 };
 
+// builtin:furnace_sphere — the camera at the centre of a sphere whose inside emits Le
+// (double-sided) and reflects with albedo rho: Le / (1 - rho) everywhere. Unlike the box,
+// it has no edges: light sampling's cos_x cos_y / d^2 is the constant 1 / (4 r^2) there.
+struct FurnaceSphereScene {
+  float radius = 1.0f;
+  float emission = 1.0f;
+  float albedo = 0.5f;
+};
+
 // builtin:floor_light — a diffuse floor (y = 0) under a square emitter facing down, seen
 // from below the emitter by an orthographic camera looking straight down. The emitter is
 // black, the floor flat: light reaches the floor once, and each point's radiance is
@@ -45,6 +54,23 @@ struct FloorLightScene {
   glm::vec3 emission{4.0f, 4.0f, 4.0f};
   float camera_height = 0.5f;          // between floor and emitter
   float view_half = 1.5f;              // orthographic xmag = ymag
+  bool triangle = false;               // a triangle emitter: the square's half (-a,-a) (a,-a) (a,a)
+};
+
+// builtin:point_floor — the floor of FloorLightScene under a point light of intensity I
+// at the emitter's height: radiance albedo I cos(theta) / (pi d^2). Only stage4 sees it.
+struct PointFloorScene {
+  FloorLightScene floor;
+  glm::vec3 intensity{2.0f, 2.0f, 2.0f};  // W/sr
+};
+
+// builtin:point_in_sphere — the inside of a diffuse sphere (radius 1, albedo 0.5) lit by a
+// point light of intensity pi at its centre, seen from the centre: every pixel is
+// albedo I / (pi r^2) / (1 - albedo) = 1 (pbrt's analytic test scene). Only stage4 sees it.
+struct PointInSphereScene {
+  float radius = 1.0f;
+  float albedo = 0.5f;
+  float intensity = 3.14159265f;
 };
 
 // builtin:mirror — a mirror facing an orthographic camera reflects an emitter behind the
@@ -71,7 +97,10 @@ Scene make_floor_light(const FloorLightScene& a);
 Scene make_mirror(const MirrorScene& a);
 Scene make_glass_slab(const GlassSlabScene& a);
 Scene make_furnace(const FurnaceScene& a);
+Scene make_furnace_sphere(const FurnaceSphereScene& a);
 Scene make_sphere(const SphereScene& a);
+Scene make_point_floor(const PointFloorScene& a);
+Scene make_point_in_sphere(const PointInSphereScene& a);
 Scene make_quad(const QuadScene& a);
 
 }  // namespace pt::analytic

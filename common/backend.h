@@ -23,6 +23,7 @@ struct KernelScene {
   const Material* materials;
   const PointLight* point_lights;
   uint* counters;  // kCounterCount values, updated by the kernel
+  const Light* lights;
 };
 
 // A stage's kernel compiled as C++ (common/shaders/cpu_kernel_impl.h).

@@ -40,6 +40,8 @@ const std::vector<Builtin>& registry() {
       {{"cornell", "the Cornell box with its ceiling light (the default scene)"}, cornell},
       {{"furnace", "camera inside a closed box, walls emit 1 with albedo 0.5: Le/(1-albedo) = 2"},
        [] { return analytic::make_furnace({}); }},
+      {{"furnace_sphere", "camera inside an emitting sphere (albedo 0.5, Le 1, double-sided): 2"},
+       [] { return analytic::make_furnace_sphere({}); }},
       {{"sphere", "a diffuse sphere of radius 1 at distance 4 before a perspective camera"},
        [] { return analytic::make_sphere({}); }},
       {{"quad", "a square turned by 0.5 rad under an orthographic camera"}, [] { return analytic::make_quad({}); }},
@@ -49,6 +51,10 @@ const std::vector<Builtin>& registry() {
        [] { return analytic::make_mirror({}); }},
       {{"glass_slab", "a glass slab (ior 1.5) before an emitter: Le (1 - R) / (1 + R)"},
        [] { return analytic::make_glass_slab({}); }},
+      {{"point_floor", "a diffuse floor under a point light: albedo I cos / (pi d^2) (stage4)"},
+       [] { return analytic::make_point_floor({}); }},
+      {{"point_in_sphere", "inside a diffuse sphere with a point light of intensity pi at its centre: 1 (stage4)"},
+       [] { return analytic::make_point_in_sphere({}); }},
   };
   return list;
 }
@@ -69,6 +75,7 @@ Scene make_builtin_scene(const std::string& name) {
     if (b.info.name == name) {
       Scene s = b.make();
       s.name = "builtin:" + name;
+      build_light_table(s);
       return s;
     }
   }
@@ -82,6 +89,7 @@ Scene load_scene(const std::string& spec) {
   if (spec.rfind(prefix, 0) == 0) return make_builtin_scene(spec.substr(prefix.size()));
   Scene s = load_gltf(spec);
   s.name = spec;
+  build_light_table(s);
   return s;
 }
 

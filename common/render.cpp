@@ -35,7 +35,7 @@ class CpuBackend : public Backend {
 
   void set_scene(const Scene& scene) override {
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
-                         scene.point_lights.data(), nullptr};
+                         scene.point_lights.data(), nullptr, scene.lights.data()};
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
@@ -129,6 +129,8 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   p.counts = glm::uvec4(uint(scene.triangles.size()), uint(scene.spheres.size()), uint(scene.materials.size()),
                         uint(scene.point_lights.size()));
   p.options = glm::uvec4(s.seed, s.roulette, s.depth_cap, 0u);
+  p.lights = glm::uvec4(uint(scene.lights.size()), 0u, 0u, 0u);
+  p.sky.w = sky_pick_probability(scene, s.sky);
   return p;
 }
 

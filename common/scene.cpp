@@ -1,6 +1,7 @@
 // Scene helpers: material rules of CONTRACT.md, bounds, and the kernel camera.
 #include "common/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -123,6 +124,75 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
   m.params.z = transmission;
   m.emission = glm::vec4(emission, double_sided ? 1.0f : 0.0f);
   return m;
+}
+
+namespace {
+float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+}  // namespace
+
+void build_light_table(Scene& scene) {
+  scene.lights.clear();
+  std::vector<double> power;
+  for (std::size_t i = 0; i < scene.triangles.size(); i++) {
+    Triangle& t = scene.triangles[i];
+    const Material& m = scene.materials[t.info.x];
+    if (!is_emissive(m)) continue;
+    double area = 0.5 * glm::length(glm::cross(glm::vec3(t.p1 - t.p0), glm::vec3(t.p2 - t.p0)));
+    double sides = m.emission.w > 0.0f ? 2.0 : 1.0;
+    t.info.y = uint(scene.lights.size());
+    scene.lights.push_back(Light{glm::uvec4(kLightTriangle, uint(i), 0u, 0u), glm::vec4(0.0f)});
+    power.push_back(M_PI * area * sides * luminance(glm::vec3(m.emission)));
+  }
+  for (std::size_t i = 0; i < scene.spheres.size(); i++) {
+    Sphere& s = scene.spheres[i];
+    const Material& m = scene.materials[s.info.x];
+    if (!is_emissive(m)) continue;
+    double r = s.center_radius.w;
+    s.info.y = uint(scene.lights.size());
+    scene.lights.push_back(Light{glm::uvec4(kLightSphere, uint(i), 0u, 0u), glm::vec4(0.0f)});
+    power.push_back(M_PI * 4.0 * M_PI * r * r * luminance(glm::vec3(m.emission)));
+  }
+  for (std::size_t i = 0; i < scene.point_lights.size(); i++) {
+    scene.lights.push_back(Light{glm::uvec4(kLightPoint, uint(i), 0u, 0u), glm::vec4(0.0f)});
+    power.push_back(4.0 * M_PI * luminance(glm::vec3(scene.point_lights[i].intensity)));
+  }
+  double total = 0.0;
+  for (double p : power) total += p;
+  double cumulative = 0.0;
+  for (std::size_t i = 0; i < scene.lights.size(); i++) {
+    // Lights of zero luminance (pure blue, say) still get a small share, so none is missed.
+    double p = total > 0.0 ? power[i] / total : 1.0 / double(power.size());
+    p = std::max(p, 1e-6);
+    cumulative += p;
+    scene.lights[i].pick = glm::vec4(float(p), float(cumulative), 0.0f, 0.0f);
+  }
+  // Normalise so that the last cumulative value is exactly 1.
+  for (Light& l : scene.lights) l.pick.x /= float(cumulative), l.pick.y /= float(cumulative);
+  if (!scene.lights.empty()) scene.lights.back().pick.y = 1.0f;
+}
+
+float sky_pick_probability(const Scene& scene, glm::vec3 sky) {
+  float sky_lum = luminance(sky);
+  if (!(sky_lum > 0.0f)) return 0.0f;
+  if (scene.lights.empty()) return 1.0f;
+  double lights = 0.0;
+  for (const Triangle& t : scene.triangles) {
+    if (t.info.y == kNoLight) continue;
+    const Material& m = scene.materials[t.info.x];
+    double area = 0.5 * glm::length(glm::cross(glm::vec3(t.p1 - t.p0), glm::vec3(t.p2 - t.p0)));
+    lights += M_PI * area * (m.emission.w > 0.0f ? 2.0 : 1.0) * luminance(glm::vec3(m.emission));
+  }
+  for (const Sphere& s : scene.spheres) {
+    if (s.info.y == kNoLight) continue;
+    double r = s.center_radius.w;
+    lights += 4.0 * M_PI * M_PI * r * r * luminance(glm::vec3(scene.materials[s.info.x].emission));
+  }
+  for (const PointLight& p : scene.point_lights) lights += 4.0 * M_PI * luminance(glm::vec3(p.intensity));
+  // The sky's power into the scene: radiance times pi times the bounding sphere's disk.
+  Bounds b = scene.bounds();
+  double r = b.empty() ? 1.0 : 0.5 * glm::length(b.hi - b.lo);
+  double sky_power = M_PI * sky_lum * M_PI * r * r;
+  return float(std::clamp(sky_power / (sky_power + lights), 0.05, 0.95));
 }
 
 bool is_emissive(const Material& m) {

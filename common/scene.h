@@ -33,6 +33,7 @@ struct Scene {
   std::vector<Sphere> spheres;           // world space, material in info.x
   std::vector<Material> materials;       // indexed by Triangle/Sphere info.x
   std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
+  std::vector<Light> lights;             // the light table: build_light_table()
   std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
   int degenerate_triangles = 0;          // skipped at load (zero area or not finite)
 
@@ -66,6 +67,16 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
 // The kernel camera for an image of the given aspect (width / height). With no camera in
 // the scene, a perspective camera on +Z frames the bounding box.
 Camera make_camera(const Scene& scene, float aspect);
+
+// Fills scene.lights with every emissive triangle and sphere and every point light, each
+// with the probability of being picked in proportion to its power (stage4), and sets
+// the primitives' light indices. load_scene() calls it.
+void build_light_table(Scene& scene);
+
+// The probability that light sampling picks the sky rather than the table: the sky's
+// power through the scene's bounding sphere against the lights' power (0 without a sky,
+// 1 without lights).
+float sky_pick_probability(const Scene& scene, glm::vec3 sky);
 
 // Whether the material emits light (any emission component above zero).
 bool is_emissive(const Material& m);

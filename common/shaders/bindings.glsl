@@ -11,6 +11,7 @@ inline const Material* materials = nullptr;
 inline const PointLight* point_lights = nullptr;
 inline FrameParams params;
 inline uint* counters = nullptr;  // kCounterCount event counters, updated atomically
+inline const Light* lights = nullptr;  // the light table (stage4)
 inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
 #else
 layout(std430, set = 0, binding = 0) readonly buffer TriangleBuffer { Triangle triangles[]; };
@@ -20,6 +21,7 @@ layout(std430, set = 0, binding = 3) readonly buffer PointLightBuffer { PointLig
 layout(std140, set = 0, binding = 4) uniform ParamsBuffer { FrameParams params; };
 layout(std430, set = 0, binding = 5) writeonly buffer OutputBuffer { vec4 pass_output[]; };
 layout(std430, set = 0, binding = 6) buffer CounterBuffer { uint counters[]; };
+layout(std430, set = 0, binding = 7) readonly buffer LightBuffer { Light lights[]; };
 uint rng_state;  // the random-number state of one invocation
 #endif
 

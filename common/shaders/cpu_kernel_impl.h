@@ -9,6 +9,7 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   materials = scene.materials;
   point_lights = scene.point_lights;
   counters = scene.counters;
+  lights = scene.lights;
   params = pass;
 }
 

@@ -36,6 +36,11 @@ const uint kRouletteThroughput = 1u;  // continue with the path weight's largest
 
 const uint kNoLight = 0xffffffffu;
 
+// Light kinds of the light table (stage4's light sampling).
+const uint kLightTriangle = 0u;  // an emissive triangle: a point uniform on its area
+const uint kLightSphere = 1u;    // an emissive sphere: a direction in the cone it subtends
+const uint kLightPoint = 2u;     // a KHR_lights_punctual point light: a delta
+
 // Event counters the kernels keep (bindings.glsl: counters[]), reported by the summary.
 const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a safety net)
 const uint kCounterZeroPdf = 1u;        // paths ended by a zero pdf or a non-finite weight
@@ -67,6 +72,12 @@ struct PointLight {
   vec4 intensity;  // rgb: radiant intensity, W/sr (colour x intensity)
 };
 
+// One entry of the light table: lights are picked in proportion to their power.
+struct Light {
+  uvec4 info;  // x: kLight*, y: index into triangles[], spheres[] or point_lights[]
+  vec4 pick;   // x: probability of picking it, y: cumulative probability up to it
+};
+
 struct Camera {
   vec4 origin;   // xyz: eye position
   vec4 forward;  // xyz: unit view direction (the node's -Z)
@@ -80,10 +91,12 @@ struct Camera {
 // Everything a pass needs besides the arrays: one uniform block on the GPU.
 struct FrameParams {
   Camera camera;
-  vec4 sky;        // rgb: radiance of rays that leave the scene
+  vec4 sky;        // rgb: radiance of rays that leave the scene; w: probability that
+                   // light sampling picks the sky (the light table shares the rest)
   uvec4 image;     // x: width, y: height, z: first sample index of this pass, w: samples
   uvec4 counts;    // x: triangles, y: spheres, z: materials, w: point lights
-  uvec4 options;   // x: seed, y: roulette mode, z: depth cap, w: unused
+  uvec4 options;   // x: seed, y: roulette mode, z: depth cap, w: first row of the dispatch
+  uvec4 lights;    // x: entries of the light table, yzw: unused
 };
 
 #ifdef __cplusplus
@@ -92,7 +105,8 @@ static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Material) == 64);
 static_assert(sizeof(PointLight) == 32);
 static_assert(sizeof(Camera) == 96);
-static_assert(sizeof(FrameParams) == 160);
+static_assert(sizeof(Light) == 32);
+static_assert(sizeof(FrameParams) == 176);
 }  // namespace pt
 #endif
 

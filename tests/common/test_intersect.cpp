@@ -8,12 +8,14 @@
 #include "common/scene.h"
 #include "common/shaders/cpp_prelude.h"
 
+namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
 #include "common/shaders/bindings.glsl"
 #include "common/shaders/camera.glsl"
 #include "common/shaders/intersect.glsl"
 }  // namespace kernel
+}  // namespace
 
 namespace {
 

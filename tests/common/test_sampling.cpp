@@ -13,6 +13,7 @@
 #include "tests/support/statistics.h"
 #include "tests/support/test_render.h"
 
+namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
 #include "common/shaders/bindings.glsl"
@@ -20,6 +21,7 @@ using namespace pt::glsl;
 #include "common/shaders/sampling.glsl"
 #include "common/shaders/bsdf.glsl"
 }  // namespace kernel
+}  // namespace
 
 using namespace pt::test;
 

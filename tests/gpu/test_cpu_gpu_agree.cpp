@@ -8,6 +8,7 @@
 #include "stage1_raycast/kernels.h"
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"
+#include "stage4_direct_indirect/kernels.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
@@ -54,4 +55,10 @@ TEST_CASE("stage3: CPU and GPU images of the same seed agree to rounding", "[sta
   RenderSettings s = settings(48, 36, 4, 23);
   s.roulette = kRouletteThroughput;
   check_agreement(stage3::kernels(), {"cornell", "furnace", "glass_slab", "mirror"}, s);
+}
+
+TEST_CASE("stage4: CPU and GPU images of the same seed agree to rounding", "[stage4][gpu]") {
+  RenderSettings s = settings(48, 36, 4, 24);
+  s.roulette = kRouletteThroughput;
+  check_agreement(stage4::kernels(), {"cornell", "furnace", "glass_slab", "point_floor"}, s);
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/analytic_scenes.h"
+#include "common/shaders/scene_types.h"
 #include "tests/support/analytic_images.h"
 #include "tests/support/lambert.h"
 #include "tests/support/test_render.h"
@@ -29,6 +30,15 @@ void check_furnace(const StageKernels& kernels, float albedo, std::uint32_t roul
   check_scene(kernels, analytic::make_furnace(f), ExpectedImage(16 * 16, glm::dvec3(want)), s);
 }
 
+void check_furnace_sphere(const StageKernels& kernels, float albedo, std::uint32_t seed) {
+  analytic::FurnaceSphereScene f;
+  f.albedo = albedo;
+  RenderSettings s = settings(16, 16, 256, seed);
+  s.roulette = kRouletteThroughput;
+  double want = f.emission / (1.0 - f.albedo);
+  check_scene(kernels, analytic::make_furnace_sphere(f), ExpectedImage(16 * 16, glm::dvec3(want)), s);
+}
+
 void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed) {
   const int size = 24;
   glm::dvec3 sky(0.5, 1.0, 2.0), albedo(analytic::SphereScene().color);
@@ -40,15 +50,17 @@ void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed) {
   check_scene(kernels, analytic::make_sphere({}), expected, s);
 }
 
-void check_floor_light(const StageKernels& kernels, std::uint32_t seed) {
+void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool triangle) {
   const int size = 20;
   analytic::FloorLightScene a;
+  a.triangle = triangle;
   ExpectedImage expected = expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
     // Screen (sx, sy) sees the floor point (sx * view, 0, -sy * view).
     auto radiance = [](double sx, double sy, const void* data) {
       const analytic::FloorLightScene& a = *static_cast<const analytic::FloorLightScene*>(data);
       double l = a.light_half, h = a.light_height;
-      std::vector<glm::dvec3> light = {{-l, h, -l}, {l, h, -l}, {l, h, l}, {-l, h, l}};
+      std::vector<glm::dvec3> light = {{-l, h, -l}, {l, h, -l}, {l, h, l}};
+      if (!a.triangle) light.push_back({-l, h, l});
       glm::dvec3 p(sx * a.view_half, 0.0, -sy * a.view_half);
       return a.albedo / M_PI * polygon_irradiance(light, p, {0.0, 1.0, 0.0}, 1.0);
     };

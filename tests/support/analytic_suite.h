@@ -17,10 +17,12 @@ void check_scene(const StageKernels& kernels, const Scene& scene, const Expected
 
 // Furnace box of the given albedo, emission 1: every pixel Le / (1 - albedo).
 void check_furnace(const StageKernels& kernels, float albedo, std::uint32_t roulette, std::uint32_t seed);
+// The spherical furnace of the given albedo, emission 1: every pixel Le / (1 - albedo).
+void check_furnace_sphere(const StageKernels& kernels, float albedo, std::uint32_t seed);
 // A diffuse sphere under a uniform sky: albedo x sky on it, the sky elsewhere.
 void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed);
 // A diffuse floor under a square light: Lambert's polygon formula, pixel by pixel.
-void check_floor_light(const StageKernels& kernels, std::uint32_t seed);
+void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool triangle = false);
 // A mirror reflecting an emitter straight back: F0 x Le.
 void check_mirror(const StageKernels& kernels, std::uint32_t seed);
 // A glass slab before an emitter: Le (1 - R) / (1 + R); invisible at ior 1.

@@ -1,0 +1,84 @@
+// stage4_direct_indirect: direct and indirect light (the article's section "Поддержка
+// прямого/косвенного освещения" and light sampling, Eq. 5): at every non-delta hit, the
+// direct light comes from a shadow ray to a point sampled on a light (soft shadows), the
+// indirect light from one BRDF-sampled ray (as stage3) whose hit no longer adds emission.
+// Written in the GLSL/C++ subset: both backends run this file.
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/rng.glsl"
+#include "common/shaders/camera.glsl"
+#include "common/shaders/intersect.glsl"
+#include "common/shaders/sampling.glsl"
+#include "common/shaders/bsdf.glsl"
+#include "common/shaders/spawn.glsl"
+#include "common/shaders/roulette.glsl"
+#include "common/shaders/lights.glsl"
+
+vec3 Li(Ray ray) {
+  vec3 L = vec3(0.0f);     // radiance gathered along the path
+  vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
+  bool specular = true;    // camera ray, or the last bounce was a delta (mirror, glass)
+  for (uint depth = 0u;; depth++) {
+    if (depth == params.options.z) {  // a safety net far beyond what roulette reaches
+      atomicAdd(counters[kCounterDepthCap], 1u);
+      break;
+    }
+    Hit hit = intersect_scene(ray, kInfinity);
+    if (hit.kind == kPrimNone) {
+      // The sky is a light too: after a non-delta bounce light sampling counted it.
+      if (specular) L += beta * vec3(params.sky);
+      break;
+    }
+    Surface surface = surface_at(ray, hit);
+    Material material = materials[surface.material];
+    // Le only where light sampling could not have found it (erratum 6): on camera rays and
+    // after delta bounces; everywhere else it was counted as direct light already.
+    if (specular) L += beta * emitted_radiance(material, surface.front);
+
+    // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
+    vec3 n = surface.front ? surface.n : -surface.n;
+    Frame frame = make_frame(n);
+    vec3 wo = frame_to_local(frame, -ray.dir);
+    uint lobe = choose_lobe(material, rng_next_float());
+    vec3 wi;
+    if (lobe == kMaterialMirror) {
+      DeltaBounce bounce = sample_mirror(material, wo);
+      wi = bounce.wi;
+      beta *= bounce.weight;
+      specular = true;
+    } else if (lobe == kMaterialGlass) {
+      DeltaBounce bounce = sample_glass(material, wo, surface.front, rng_next_float());
+      wi = bounce.wi;
+      beta *= bounce.weight;
+      specular = true;
+    } else {
+      // Eq. (5), corrected (erratum 5): direct light f Le V cos_x cos_y / d^2 / pdf_A,
+      // with the geometry term and the pdf inside the light sample's weight.
+      LightSample ls = sample_light(surface.p, n);
+      vec3 wl = frame_to_local(frame, ls.wi);
+      vec3 f = eval_lobe(lobe, material, wo, wl);
+      if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f &&
+          !occluded(spawn_ray(surface.p, surface.n, ls.wi), ls.dist)) {
+        L += beta * f * ls.weight * wl.z;
+      }
+      // Indirect light: one BRDF-sampled direction, as in stage3 (Eq. 4).
+      LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());
+      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
+      // Never divide by a zero pdf: such a sample ends the path, and is counted.
+      if (!(s.pdf > 0.0f) || !is_finite(weight)) {
+        atomicAdd(counters[kCounterZeroPdf], 1u);
+        break;
+      }
+      wi = s.wi;
+      beta *= weight;
+      specular = false;
+    }
+
+    float survive = russian_roulette(beta, params.options.y);
+    if (survive == 0.0f) break;
+    beta *= survive;
+    ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+  }
+  return L;
+}
+
+#include "common/shaders/render_pixel.glsl"

@@ -1,0 +1,8 @@
+// stage4_direct_indirect's kernel in both forms (C++ for the CPU, SPIR-V for Vulkan).
+#pragma once
+
+#include "common/backend.h"
+
+namespace stage4 {
+pt::StageKernels kernels();
+}

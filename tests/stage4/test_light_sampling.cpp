@@ -1,0 +1,108 @@
+// Light sampling (common/shaders/lights.glsl), compiled as the CPU kernels compile it:
+// the mean of 1 / pdf over samples reproduces each light's subtended solid angle, and the
+// pick probabilities follow the lights' power.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "common/scene.h"
+#include "common/shaders/cpp_prelude.h"
+#include "tests/support/test_render.h"
+
+namespace {  // internal linkage: each test file compiles its own copy of the kernel code
+namespace kernel {
+using namespace pt::glsl;
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/rng.glsl"
+#include "common/shaders/camera.glsl"
+#include "common/shaders/intersect.glsl"
+#include "common/shaders/sampling.glsl"
+#include "common/shaders/bsdf.glsl"
+#include "common/shaders/lights.glsl"
+}  // namespace kernel
+}  // namespace
+
+namespace {
+
+void bind(const pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
+  kernel::triangles = s.triangles.data();
+  kernel::spheres = s.spheres.data();
+  kernel::materials = s.materials.data();
+  kernel::point_lights = s.point_lights.data();
+  kernel::lights = s.lights.data();
+  kernel::params.counts = glm::uvec4(uint(s.triangles.size()), uint(s.spheres.size()), uint(s.materials.size()),
+                                     uint(s.point_lights.size()));
+  kernel::params.lights = glm::uvec4(uint(s.lights.size()), 0u, 0u, 0u);
+  kernel::params.sky = glm::vec4(sky, pt::sky_pick_probability(s, sky));
+}
+
+// Solid angle of a triangle seen from the origin (Van Oosterom and Strackee 1983).
+double triangle_solid_angle(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+  double numerator = glm::dot(a, glm::cross(b, c));
+  double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  return std::abs(2.0 * std::atan2(numerator, denominator));
+}
+
+}  // namespace
+
+TEST_CASE("light sampling: the mean of 1/pdf is the solid angle a triangle or a sphere subtends",
+          "[stage4][lights][statistical]") {
+  pt::Scene s;
+  uint light = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(1.0f)));
+  glm::vec3 p0(-0.4f, 1.0f, -0.3f), p1(0.7f, 1.2f, -0.2f), p2(0.1f, 0.9f, 0.8f);
+  s.add_triangle(p0, p1, p2, light);  // facing down, towards the origin
+  pt::build_light_table(s);
+  bind(s);
+  kernel::rng_seed(1u, 2u, pt::test::test_seed(3));
+  const int n = 400000;
+  double sum = 0.0, sum2 = 0.0;
+  int zero = 0;
+  for (int i = 0; i < n; i++) {
+    kernel::LightSample ls = kernel::sample_light(glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    zero += !(ls.pdf > 0.0f);
+    double inv = ls.pdf > 0.0f ? 1.0 / double(ls.pdf) : 0.0;
+    sum += inv, sum2 += inv * inv;
+  }
+  double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+  double want = triangle_solid_angle(glm::dvec3(p0), glm::dvec3(p1), glm::dvec3(p2));
+  INFO("mean 1/pdf " << mean << " +- " << se << ", solid angle " << want);
+  CHECK(zero == 0);
+  CHECK(std::abs(mean - want) < 5.0 * se + 1e-6 * want);
+
+  // A sphere: every sample's 1/pdf is the cone's solid angle 2 pi (1 - cos theta_max).
+  pt::Scene t;
+  uint lamp = t.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(2.0f)));
+  t.add_sphere({0.0f, 3.0f, 1.0f}, 0.5f, lamp);
+  pt::build_light_table(t);
+  bind(t);
+  double d2 = 10.0, cone = 2.0 * M_PI * (1.0 - std::sqrt(1.0 - 0.25 / d2));
+  for (int i = 0; i < 1000; i++) {
+    kernel::LightSample ls = kernel::sample_light(glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    REQUIRE(1.0 / ls.pdf == Approx(cone).epsilon(1e-3));
+    // The sampled direction lies in the cone and meets the sphere at the returned distance.
+    glm::vec3 y = ls.dist * ls.wi;
+    CHECK(glm::length(y - glm::vec3(0.0f, 3.0f, 1.0f)) == Approx(0.5f).epsilon(1e-3));
+  }
+}
+
+TEST_CASE("light sampling: lights are picked in proportion to their power", "[stage4][lights]") {
+  pt::Scene s;
+  uint dim = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(1.0f)));
+  uint bright = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(3.0f), true));
+  s.add_triangle({0, 1, 0}, {1, 1, 0}, {0, 1, 1}, dim);     // area 0.5, one side
+  s.add_triangle({0, 2, 0}, {2, 2, 0}, {0, 2, 1}, bright);  // area 1, both sides, 3x brighter
+  s.point_lights.push_back(pt::PointLight{glm::vec4(0, 3, 0, 1), glm::vec4(1, 1, 1, 0)});
+  pt::build_light_table(s);
+  REQUIRE(s.lights.size() == 3);
+  // Powers: pi 0.5 1, pi 1 2 3, 4 pi 1 -> 0.5 : 6 : 4.
+  CHECK(s.lights[0].pick.x == Approx(0.5 / 10.5).epsilon(1e-5));
+  CHECK(s.lights[1].pick.x == Approx(6.0 / 10.5).epsilon(1e-5));
+  CHECK(s.lights[2].pick.x == Approx(4.0 / 10.5).epsilon(1e-5));
+  CHECK(s.lights[2].pick.y == 1.0f);
+  CHECK(s.triangles[0].info.y == 0u);
+  bind(s);
+  CHECK(kernel::pick_light(0.0f) == 0u);
+  CHECK(kernel::pick_light(0.05f) == 1u);
+  CHECK(kernel::pick_light(0.99f) == 2u);
+}
