@@ -10,6 +10,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
 
 namespace fs = std::filesystem;
 
@@ -74,6 +77,23 @@ TEST_CASE("cli: a good render writes the image and prints one summary line", "[c
   CHECK(r.out.find("stage1_raycast: backend cpu") == 0);
   CHECK(r.out.find("32x24, 2 spp") != std::string::npos);
   CHECK(fs::file_size(out) > 0);
+  // The file records the render: stage, spp, seed, backend.
+  auto in = OIIO::ImageInput::open(out);
+  REQUIRE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  CHECK(spec.width == 32);
+  CHECK(spec.height == 24);
+  CHECK(spec.get_string_attribute("pt:stage") == "stage1_raycast");
+  CHECK(spec.get_string_attribute("pt:spp") == "2");
+  CHECK(spec.get_string_attribute("pt:seed") == "0");
+  std::string backend(spec.get_string_attribute("pt:backend"));
+  INFO("pt:backend = " << backend);
+  CHECK(backend.rfind("cpu", 0) == 0);
+  std::vector<float> pixels(32 * 24 * 3);
+  REQUIRE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, pixels.data()));
+  float peak = 0.0f;
+  for (float v : pixels) peak = std::max(peak, v);
+  CHECK(peak == 17.0f);  // the ceiling light's red radiance, linear in the EXR
 }
 
 TEST_CASE("cli: --help lists every option and the built-in scenes", "[cli]") {
