@@ -1,6 +1,7 @@
 // A compute pipeline made from embedded SPIR-V, with the one descriptor set that
 // common/shaders/bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
-// per-pass parameters (uniform), 5 the pass output, 6 the event counters (storage).
+// per-pass parameters (uniform), 5 the pass output, 6 the event counters, 7 the light
+// table (storage).
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,7 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 7;
+constexpr uint32_t kBindingCount = 8;
 constexpr uint32_t kParamsBinding = 4;
 
 class ComputePipeline {

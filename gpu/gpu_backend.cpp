@@ -58,13 +58,14 @@ class GpuBackend : public Backend {
     upload(spheres_, scene.spheres.data(), scene.spheres.size() * sizeof(Sphere));
     upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
     upload(point_lights_, scene.point_lights.data(), scene.point_lights.size() * sizeof(PointLight));
+    upload(lights_, scene.lights.data(), scene.lights.size() * sizeof(Light));
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     const uint32_t width = params.image.x, height = params.image.y;
     ensure_output(VkDeviceSize(out.size_bytes()));
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_,
-                                            &params_,    &output_,  &counters_};
+                                            &params_,    &output_,  &counters_,     &lights_};
     pipeline_.bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -158,7 +159,7 @@ class GpuBackend : public Backend {
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
-  Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_;
+  Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_;
 };
 
 }  // namespace
