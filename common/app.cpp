@@ -70,6 +70,8 @@ RenderSettings render_settings(const Options& o, const char* stage) {
   s.seed = o.seed;
   s.sky = o.sky;
   s.roulette = o.roulette;
+  s.time_budget = o.time_budget;
+  s.target_error = o.target_error;
   s.depth_cap = o.depth_cap;
   s.progress = true;
   s.label = stage;
@@ -96,6 +98,10 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
                 backend.kind().c_str(), backend.device_name().c_str(), f.width(), f.height(),
                 (unsigned long long)f.spp(), r.seconds, r.seconds > 0.0 ? samples / r.seconds : 0.0);
   std::string s = line;
+  if (f.spp() >= 2) {
+    std::snprintf(line, sizeof line, ", estimated relative error %.2g", f.relative_standard_error());
+    s += line;
+  }
   // Events that are rare and deserve a word: each is said once, with its count.
   const RenderCounters& c = r.counters;
   if (c.non_finite) {

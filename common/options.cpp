@@ -50,6 +50,12 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
   app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
   app.add_option("--threads", o.threads, "CPU backend threads (0 = all cores)")->capture_default_str();
+  app.add_option("--time-budget", o.time_budget,
+                 "render in passes until SECONDS are spent (--spp, if given, still caps the samples)")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--target-error", o.target_error,
+                 "stop once the estimated relative standard error of the image mean is below E")
+      ->check(CLI::Range(0.0, 1.0));
   std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
   if (stage.has_roulette) {
     app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
@@ -68,6 +74,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.sky = parse_rgb(sky, "--sky");
+  // With a time or error target and no --spp, the samples are not capped.
+  if ((o.time_budget > 0.0 || o.target_error > 0.0) && app.count("--spp") == 0) o.spp = 0xffffffffu;
   o.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");
   return o;

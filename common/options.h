@@ -33,6 +33,8 @@ struct Options {
   unsigned threads = 0;          // CPU threads, 0 = all cores
   std::uint32_t roulette = 0;    // kRouletteFixed or kRouletteThroughput (--rr)
   std::uint32_t depth_cap = 1000;  // a safety net far beyond what roulette reaches
+  double time_budget = 0.0;        // --time-budget SECONDS (0: none)
+  double target_error = 0.0;       // --target-error E (0: none)
 };
 
 // Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with

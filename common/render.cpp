@@ -79,6 +79,12 @@ std::uint64_t available_memory_bytes() {
 }
 
 void print_progress(const RenderSettings& s, std::uint64_t done, double elapsed) {
+  if (s.time_budget > 0.0 || s.target_error > 0.0) {  // no fixed end: say where it stands
+    std::fprintf(stderr, "\r%s: %llu spp, %.1f s elapsed%s   ", s.label, (unsigned long long)done, elapsed,
+                 s.time_budget > 0.0 ? (" of " + std::to_string(int(s.time_budget)) + " s").c_str() : "");
+    std::fflush(stderr);
+    return;
+  }
   double left = elapsed / double(done) * double(s.spp - done);
   std::fprintf(stderr, "\r%s: %3d%% (%llu/%llu spp), %.1f s elapsed, about %.1f s left   ", s.label,
                int(100.0 * double(done) / double(s.spp)), (unsigned long long)done, (unsigned long long)s.spp,
@@ -93,6 +99,7 @@ std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned 
 }
 
 std::uint64_t pass_samples(std::uint64_t index) {
+  // 1, 2, 4, 8, 16, 16, ...
   return index >= 4 ? kMaxPassSamples : std::min(kMaxPassSamples, std::uint64_t(1) << index);
 }
 
@@ -154,6 +161,12 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
     done += n;
     double elapsed = seconds_since(start);
     if (show_progress && elapsed > 1.0 && done < s.spp) print_progress(s, done, elapsed), shown = true;
+    // The user's trade of time for accuracy: every pass ends a correct image of its spp.
+    if (s.time_budget > 0.0 && elapsed >= s.time_budget) break;
+    if (s.target_error > 0.0 && done >= kMinSamplesForError &&
+        result.film.relative_standard_error() <= s.target_error) {
+      break;
+    }
   }
   if (shown) std::fprintf(stderr, "\r%*s\r", 79, "");
   result.seconds = seconds_since(start);

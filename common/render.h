@@ -23,6 +23,9 @@ struct RenderSettings {
   glm::vec3 sky{0.0f};
   std::uint32_t roulette = kRouletteFixed;  // stage2 onwards
   std::uint32_t depth_cap = 1000;           // stage2 onwards: a safety net only
+  double time_budget = 0.0;                 // seconds; > 0: stop after the pass that spends it
+  double target_error = 0.0;                // > 0: stop once the estimated relative standard
+                                            // error of the image mean is below it
   bool progress = false;                    // progress line on stderr
   const char* label = "render";             // names the progress line
 };
@@ -49,6 +52,9 @@ struct RenderResult {
 // Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's
 // watchdog) and the progress line moves.
 constexpr std::uint64_t kMaxPassSamples = 16;
+
+// --target-error trusts the variance estimate only after this many samples per pixel.
+constexpr std::uint64_t kMinSamplesForError = 16;
 
 // Samples in pass number `index` (0, 1, ...): 1, 2, 4, ... up to kMaxPassSamples.
 std::uint64_t pass_samples(std::uint64_t index);
