@@ -58,7 +58,13 @@ vec3 Li(Ray ray) {
       vec3 f = eval_lobe(lobe, material, wo, wl);
       if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f &&
           !occluded(spawn_ray(surface.p, surface.n, ls.wi), ls.dist)) {
+#ifdef PT_EQ5_PRINTED
+        // As printed: f Le cos_x summed over the lights, no geometry term, no pdf (the
+        // tests build this to show Lambert's formula catches it).
+        L += beta * f * ls.weight * ls.pdf * wl.z;
+#else
         L += beta * f * ls.weight * wl.z;
+#endif
       }
       // Indirect light: one BRDF-sampled direction, as in stage3 (Eq. 4).
       LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());

@@ -28,7 +28,7 @@ TEST_CASE("stage2 erratum 1: the printed factor 1/(2 pi N) fails the furnace tes
           "[stage2][errata][statistical]") {
   analytic::FurnaceScene f;  // albedo 0.5, Le 1: the answer is 2
   Scene scene = analytic::make_furnace(f);
-  RenderSettings s = settings(8, 8, 256, test_seed(600));
+  RenderSettings s = settings(8, 8, 1024, test_seed(600));
   ExpectedImage want(64, glm::dvec3(f.emission / (1.0 - f.albedo)));
 
   StageKernels as_printed{"stage2 as printed", printed::cpu_kernel(), {}};

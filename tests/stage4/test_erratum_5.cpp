@@ -1,0 +1,47 @@
+// Erratum 5: Eq. (5) as printed sums f Le cos over the lights with no geometry term and no
+// pdf. Built from stage4's own integrator, it fails Lambert's formula for the floor under
+// a square light, which the corrected estimator passes (test_stage4_images.cpp).
+#include <catch2/catch.hpp>
+
+#include "common/analytic_scenes.h"
+#include "common/shaders/cpp_prelude.h"
+#include "stage4_direct_indirect/kernels.h"
+#include "tests/support/image_checks.h"
+#include "tests/support/lambert.h"
+#include "tests/support/test_render.h"
+
+namespace {
+namespace eq5_printed {
+using namespace pt::glsl;
+#define PT_EQ5_PRINTED
+#include "stage4_direct_indirect/integrator.glsl"
+#include "common/shaders/cpu_kernel_impl.h"
+#undef PT_EQ5_PRINTED
+}  // namespace eq5_printed
+}  // namespace
+
+using namespace pt;
+using namespace pt::test;
+
+TEST_CASE("stage4 erratum 5: Eq. (5) as printed (no geometry term, no pdf) fails Lambert's formula",
+          "[stage4][errata][statistical]") {
+  const int size = 12;
+  analytic::FloorLightScene a;
+  ExpectedImage expected = expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
+    auto radiance = [](double sx, double sy, const void* data) {
+      const analytic::FloorLightScene& a = *static_cast<const analytic::FloorLightScene*>(data);
+      double l = a.light_half, h = a.light_height;
+      std::vector<glm::dvec3> light = {{-l, h, -l}, {l, h, -l}, {l, h, l}, {-l, h, l}};
+      glm::dvec3 p(sx * a.view_half, 0.0, -sy * a.view_half);
+      return a.albedo / M_PI * polygon_irradiance(light, p, {0.0, 1.0, 0.0}, 1.0);
+    };
+    return glm::dvec3(a.emission) * rect_average(x0, y0, x1, y1, radiance, &a);
+  });
+  RenderSettings s = settings(size, size, 256, test_seed(3200));
+  s.roulette = kRouletteThroughput;
+  Scene scene = analytic::make_floor_light(a);
+  Film printed = render(*make_cpu_backend({"stage4 as printed", eq5_printed::cpu_kernel(), {}}), scene, s).film;
+  CHECK_FALSE(check_pixels(printed, expected).passed());
+  Film right = render(*make_cpu_backend(stage4::kernels()), scene, s).film;
+  CHECK(check_pixels(right, expected).passed());
+}
