@@ -7,7 +7,7 @@
 #include "common/shaders/cpp_prelude.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "tests/support/image_checks.h"
-#include "tests/support/lambert.h"
+#include "tests/support/analytic_suite.h"
 #include "tests/support/test_render.h"
 
 namespace {
@@ -27,16 +27,7 @@ TEST_CASE("stage4 erratum 5: Eq. (5) as printed (no geometry term, no pdf) fails
           "[stage4][errata][statistical]") {
   const int size = 12;
   analytic::FloorLightScene a;
-  ExpectedImage expected = expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
-    auto radiance = [](double sx, double sy, const void* data) {
-      const analytic::FloorLightScene& a = *static_cast<const analytic::FloorLightScene*>(data);
-      double l = a.light_half, h = a.light_height;
-      std::vector<glm::dvec3> light = {{-l, h, -l}, {l, h, -l}, {l, h, l}, {-l, h, l}};
-      glm::dvec3 p(sx * a.view_half, 0.0, -sy * a.view_half);
-      return a.albedo / M_PI * polygon_irradiance(light, p, {0.0, 1.0, 0.0}, 1.0);
-    };
-    return glm::dvec3(a.emission) * rect_average(x0, y0, x1, y1, radiance, &a);
-  });
+  ExpectedImage expected = floor_light_image(a, size);
   RenderSettings s = settings(size, size, 256, test_seed(3200));
   s.roulette = kRouletteThroughput;
   Scene scene = analytic::make_floor_light(a);

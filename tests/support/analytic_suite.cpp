@@ -50,11 +50,8 @@ void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed) {
   check_scene(kernels, analytic::make_sphere({}), expected, s);
 }
 
-void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool triangle) {
-  const int size = 20;
-  analytic::FloorLightScene a;
-  a.triangle = triangle;
-  ExpectedImage expected = expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
+ExpectedImage floor_light_image(const analytic::FloorLightScene& a, int size) {
+  return expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
     // Screen (sx, sy) sees the floor point (sx * view, 0, -sy * view).
     auto radiance = [](double sx, double sy, const void* data) {
       const analytic::FloorLightScene& a = *static_cast<const analytic::FloorLightScene*>(data);
@@ -66,7 +63,13 @@ void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool tri
     };
     return glm::dvec3(a.emission) * rect_average(x0, y0, x1, y1, radiance, &a);
   });
-  check_scene(kernels, analytic::make_floor_light(a), expected, settings(size, size, 1024, seed));
+}
+
+void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool triangle) {
+  const int size = 20;
+  analytic::FloorLightScene a;
+  a.triangle = triangle;
+  check_scene(kernels, analytic::make_floor_light(a), floor_light_image(a, size), settings(size, size, 1024, seed));
 }
 
 void check_mirror(const StageKernels& kernels, std::uint32_t seed) {

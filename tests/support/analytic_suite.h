@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "common/analytic_scenes.h"
 #include "common/backend.h"
 #include "common/render.h"
 #include "tests/support/image_checks.h"
@@ -21,6 +22,8 @@ void check_furnace(const StageKernels& kernels, float albedo, std::uint32_t roul
 void check_furnace_sphere(const StageKernels& kernels, float albedo, std::uint32_t seed);
 // A diffuse sphere under a uniform sky: albedo x sky on it, the sky elsewhere.
 void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed);
+// The closed-form image of the floor under the square (or triangle) light at size x size.
+ExpectedImage floor_light_image(const analytic::FloorLightScene& scene, int size);
 // A diffuse floor under a square light: Lambert's polygon formula, pixel by pixel.
 void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool triangle = false);
 // A mirror reflecting an emitter straight back: F0 x Le.
