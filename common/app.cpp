@@ -44,7 +44,7 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
     // Write: the image atomically, then the one summary line.
     out.write(result.film.mean_rgb(), options->width, options->height,
               image_metadata(stage.name, *options, *backend, result), options->exposure);
-    std::printf("%s\n", summary_line(stage.name, *backend, result).c_str());
+    std::printf("%s\n", summary_line(stage.name, *backend, result, scene_features(scene, options->sky)).c_str());
     return 0;
   });
 }
@@ -90,7 +90,8 @@ ImageMetadata image_metadata(const char* stage, const Options& o, const Backend&
   return m;
 }
 
-std::string summary_line(const char* stage, const Backend& backend, const RenderResult& r) {
+std::string summary_line(const char* stage, const Backend& backend, const RenderResult& r,
+                         const std::string& features) {
   const Film& f = r.film;
   double samples = double(f.width()) * double(f.height()) * double(f.spp());
   char line[512];
@@ -111,6 +112,7 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
   }
   if (c.zero_pdf) s += ", " + std::to_string(c.zero_pdf) + " paths ended by a zero pdf";
   if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
+  if (!features.empty()) s += " [scene: " + features + "]";
   return s;
 }
 

@@ -36,6 +36,7 @@ ImageMetadata image_metadata(const char* stage, const Options& options, const Ba
                              const RenderResult& result);
 
 // The one summary line: stage, backend and device, size, spp, seconds, samples per second.
-std::string summary_line(const char* stage, const Backend& backend, const RenderResult& result);
+std::string summary_line(const char* stage, const Backend& backend, const RenderResult& result,
+                         const std::string& features = "");
 
 }  // namespace pt

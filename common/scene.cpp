@@ -195,6 +195,32 @@ float sky_pick_probability(const Scene& scene, glm::vec3 sky) {
   return float(std::clamp(sky_power / (sky_power + lights), 0.05, 0.95));
 }
 
+std::string scene_features(const Scene& scene, glm::vec3 sky) {
+  auto join = [](const std::vector<std::string>& parts) {
+    std::string s;
+    for (const std::string& p : parts) s += (s.empty() ? "" : ", ") + p;
+    return s.empty() ? std::string("none") : s;
+  };
+  std::vector<std::string> shapes, kinds, lights;
+  if (!scene.triangles.empty()) shapes.push_back("triangles");
+  if (!scene.spheres.empty()) shapes.push_back("spheres");
+  const char* names[] = {"diffuse", "mirror", "GGX conductor", "glass", "mixed"};
+  bool used[5] = {};
+  for (const Triangle& t : scene.triangles) used[scene.materials[t.info.x].kind.x] = true;
+  for (const Sphere& s : scene.spheres) used[scene.materials[s.info.x].kind.x] = true;
+  for (int k = 0; k < 5; k++) if (used[k]) kinds.push_back(names[k]);
+  bool emissive_triangles = false, emissive_spheres = false;
+  for (const Light& l : scene.lights) {
+    emissive_triangles |= l.info.x == kLightTriangle;
+    emissive_spheres |= l.info.x == kLightSphere;
+  }
+  if (emissive_triangles) lights.push_back("emissive triangles");
+  if (emissive_spheres) lights.push_back("emissive spheres");
+  if (!scene.point_lights.empty()) lights.push_back("point lights");
+  if (sky.x > 0.0f || sky.y > 0.0f || sky.z > 0.0f) lights.push_back("sky");
+  return join(shapes) + "; " + join(kinds) + "; " + join(lights);
+}
+
 bool is_emissive(const Material& m) {
   return m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f;
 }

@@ -78,6 +78,10 @@ void build_light_table(Scene& scene);
 // 1 without lights).
 float sky_pick_probability(const Scene& scene, glm::vec3 sky);
 
+// What the scene uses (issue: model only what a scene requires): shapes, material kinds,
+// light kinds and the sky, e.g. "triangles; diffuse, glass; emissive triangles, sky".
+std::string scene_features(const Scene& scene, glm::vec3 sky);
+
 // Whether the material emits light (any emission component above zero).
 bool is_emissive(const Material& m);
 
