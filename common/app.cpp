@@ -5,6 +5,7 @@
 #include <new>
 
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/scene_loading.h"
 
 namespace pt {
@@ -30,6 +31,7 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
     // Parse: the options of CONTRACT.md.
     std::optional<Options> options = parse_options(argc, argv, stage);
     if (!options) return 0;  // --help
+    install_interrupt_handlers();
     OutputFile out(options->out);  // checked now, written after the render
     check_image_memory(options->width, options->height);
     // Load: a glTF file or a built-in scene.
@@ -45,6 +47,11 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
     out.write(result.film.mean_rgb(), options->width, options->height,
               image_metadata(stage.name, *options, *backend, result), options->exposure);
     std::printf("%s\n", summary_line(stage.name, *backend, result, scene_features(scene, options->sky)).c_str());
+    if (int signo = interrupt_signal()) {
+      std::fprintf(stderr, "%s: interrupted after %llu of the samples per pixel asked for; the image has them\n",
+                   stage.name, (unsigned long long)result.film.spp());
+      return 128 + signo;
+    }
     return 0;
   });
 }

@@ -14,6 +14,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "common/error.h"
+#include "common/interrupt.h"
 
 namespace pt {
 namespace fs = std::filesystem;
@@ -97,6 +98,7 @@ void OutputFile::write(const std::vector<float>& rgb, int width, int height, con
   }
 
   fs::path tmp = temporary_name(path_, extension_);
+  set_file_in_progress(tmp.c_str());  // a second Ctrl-C removes it
   auto out = ImageOutput::create(extension_);
   if (!out) fail(path_, "no " + extension_ + " writer in OpenImageIO");
   bool ok = out->open(tmp.string(), spec) && out->write_image(png ? TypeDesc::UINT8 : TypeDesc::FLOAT, pixels) &&
@@ -111,6 +113,7 @@ void OutputFile::write(const std::vector<float>& rgb, int width, int height, con
   int fd = ::open(tmp.c_str(), O_RDONLY);
   if (fd >= 0) ::fsync(fd), ::close(fd);
   fs::rename(tmp, path_, ec);
+  set_file_in_progress("");
   if (ec) {
     std::string why = ec.message();
     fs::remove(tmp, ec);

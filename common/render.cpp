@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/scene.h"
 
 namespace pt {
@@ -161,6 +162,8 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
     done += n;
     double elapsed = seconds_since(start);
     if (show_progress && elapsed > 1.0 && done < s.spp) print_progress(s, done, elapsed), shown = true;
+    // Ctrl-C or SIGTERM: stop here; the samples done so far make a correct image.
+    if (interrupt_signal() != 0) break;
     // The user's trade of time for accuracy: every pass ends a correct image of its spp.
     if (s.time_budget > 0.0 && elapsed >= s.time_budget) break;
     if (s.target_error > 0.0 && done >= kMinSamplesForError &&
