@@ -78,6 +78,22 @@ vec3 sample_ggx_vndf(vec3 wo, float alpha, vec2 u) {
   return normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0f, nh.z)));
 }
 
+// The inverse of sample_ggx_vndf: the u that gives the microfacet normal h seen from wo.
+vec2 invert_ggx_vndf(vec3 wo, float alpha, vec3 h) {
+  vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+  float len2 = vh.x * vh.x + vh.y * vh.y;
+  vec3 t1 = len2 > 0.0f ? vec3(-vh.y, vh.x, 0.0f) * inversesqrt(len2) : vec3(1.0f, 0.0f, 0.0f);
+  vec3 t2 = cross(vh, t1);
+  // Stretch h back to the hemisphere configuration and read its disk coordinates.
+  vec3 nh = normalize(vec3(h.x / alpha, h.y / alpha, h.z));
+  float p1 = dot(nh, t1);
+  float s = 0.5f * (1.0f + vh.z);
+  float p2 = (dot(nh, t2) - (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1))) / s;
+  float phi = atan(p2, p1);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  return vec2(p1 * p1 + p2 * p2, phi / (2.0f * kPi));
+}
+
 // The pdf (solid angle) of wi = reflect(-wo, h) with h from sample_ggx_vndf.
 float ggx_vndf_pdf(vec3 wo, vec3 wi, float alpha) {
   vec3 h = wo + wi;

@@ -135,6 +135,22 @@ LightSample sample_light(vec3 p, vec3 n) {
   return sample_point_light(light.info.y, p, pick);
 }
 
+// The pdf (solid angle x pick probability) with which sample_light, at the point p, picks
+// the direction wi that meets the emissive triangle `index` at distance dist: what a
+// light sample's pdf must equal (the tests check it; multiple importance sampling would
+// weigh BRDF samples with it).
+float triangle_light_pdf(uint index, vec3 p, vec3 wi, float dist) {
+  Triangle tri = triangles[index];
+  if (tri.info.y == kNoLight) return 0.0f;
+  vec3 c = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));
+  float area = 0.5f * length(c);
+  float cos_y = dot(-wi, normalize(c));
+  if (materials[tri.info.x].emission.w > 0.0f) cos_y = abs(cos_y);
+  if (!(cos_y > 0.0f)) return 0.0f;
+  float pick = (1.0f - params.sky.w) * lights[tri.info.y].pick.x;
+  return dist * dist / (cos_y * area) * pick;
+}
+
 // Whether anything lies between p (offset off its surface) and the light point.
 bool occluded(Ray shadow, float dist) {
   float t_max = dist == kInfinity ? kInfinity : dist * (1.0f - 1e-4f);

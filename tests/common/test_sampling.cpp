@@ -101,6 +101,23 @@ TEST_CASE("sampling: the inverses undo the samplers", "[sampling]") {
   }
 }
 
+TEST_CASE("sampling: invert_ggx_vndf undoes sample_ggx_vndf", "[sampling][ggx]") {
+  for (double alpha : {0.01, 0.1, 0.5, 1.0}) {
+    for (double degrees : {0.0, 30.0, 60.0, 85.0}) {
+      glm::vec3 wo = incident(degrees);
+      for (float x : {0.05f, 0.37f, 0.5f, 0.93f}) {
+        for (float y : {0.1f, 0.3f, 0.61f, 0.9f}) {
+          glm::vec3 h = kernel::sample_ggx_vndf(wo, float(alpha), glm::vec2(x, y));
+          glm::vec2 u = kernel::invert_ggx_vndf(wo, float(alpha), h);
+          INFO("alpha " << alpha << ", " << degrees << " degrees, u = " << x << ", " << y);
+          CHECK(u.x == Approx(x).margin(2e-4));
+          CHECK(u.y == Approx(y).margin(2e-4));
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("sampling: a mixed material picks the conductor with probability metallic; glass reflects with "
           "probability Fresnel", "[sampling][statistical]") {
   const int n = 200000;
