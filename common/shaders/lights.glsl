@@ -135,11 +135,11 @@ LightSample sample_light(vec3 p, vec3 n) {
   return sample_point_light(light.info.y, p, pick);
 }
 
-// The pdf (solid angle x pick probability) with which sample_light, at the point p, picks
+// The pdf (solid angle x pick probability) with which sample_light picks, from a point,
 // the direction wi that meets the emissive triangle `index` at distance dist: what a
 // light sample's pdf must equal (the tests check it; multiple importance sampling would
 // weigh BRDF samples with it).
-float triangle_light_pdf(uint index, vec3 p, vec3 wi, float dist) {
+float triangle_light_pdf(uint index, vec3 wi, float dist) {
   Triangle tri = triangles[index];
   if (tri.info.y == kNoLight) return 0.0f;
   vec3 c = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));

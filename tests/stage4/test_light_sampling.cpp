@@ -103,7 +103,7 @@ TEST_CASE("light sampling: the sampled point's pdf equals the pdf its evaluation
     kernel::Hit hit = kernel::intersect_scene(kernel::Ray(p, ls.wi), kernel::kInfinity);
     REQUIRE(hit.kind == pt::kPrimTriangle);
     CHECK(hit.t == Approx(ls.dist).epsilon(1e-4));
-    CHECK(kernel::triangle_light_pdf(hit.prim, p, ls.wi, hit.t) == Approx(ls.pdf).epsilon(1e-3));
+    CHECK(kernel::triangle_light_pdf(hit.prim, ls.wi, hit.t) == Approx(ls.pdf).epsilon(1e-3));
     checked++;
   }
   CHECK(checked > 500);
