@@ -139,6 +139,8 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   p.options = glm::uvec4(s.seed, s.roulette, s.depth_cap, 0u);
   p.lights = glm::uvec4(uint(scene.lights.size()), 0u, 0u, 0u);
   p.sky.w = sky_pick_probability(scene, s.sky);
+  Bounds b = scene.bounds();
+  p.scale = glm::vec4(b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f), 0.0f, 0.0f, 0.0f);
   return p;
 }
 

@@ -66,7 +66,14 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   if (det < 0.0f && (t_scaled >= 0.0f || t_scaled < best.t * det)) return best;
   if (det > 0.0f && (t_scaled <= 0.0f || t_scaled > best.t * det)) return best;
   float inv_det = 1.0f / det;
-  return Hit(t_scaled * inv_det, v * inv_det, w * inv_det, index, kPrimTriangle);
+  float t = t_scaled * inv_det;
+  // A hit closer than the rounding of the vertices' own coordinates (relative to the ray
+  // origin) cannot be told from the surface the ray left: a large triangle far from its
+  // vertices has errors far above the spawn offset (pbrt-v4's deltaT plays this role).
+  float extent = max(max(max(abs(a.x), abs(a.y)), max(abs(a.z), abs(b.x))),
+                     max(max(abs(b.y), abs(b.z)), max(max(abs(c.x), abs(c.y)), abs(c.z))));
+  if (t <= 4e-7f * extent) return best;
+  return Hit(t, v * inv_det, w * inv_det, index, kPrimTriangle);
 }
 
 // Returns a hit with sphere `index` if it is nearer than `best`, else `best`.

@@ -151,10 +151,17 @@ float triangle_light_pdf(uint index, vec3 wi, float dist) {
   return dist * dist / (cos_y * area) * pick;
 }
 
-// Whether anything lies between p (offset off its surface) and the light point.
-bool occluded(Ray shadow, float dist) {
-  float t_max = dist == kInfinity ? kInfinity : dist * (1.0f - 1e-4f);
-  return intersect_scene(shadow, t_max).kind != kPrimNone;
+// Whether anything lies between the surface point p (normal n) and the light sample. The
+// shadow ray starts off the surface (spawn_ray); its length is measured from there, and
+// stops just short of the light point so that the light itself does not block it.
+bool occluded(vec3 p, vec3 n, LightSample ls) {
+  Ray shadow = spawn_ray(p, n, ls.wi);
+  if (ls.dist == kInfinity) return intersect_scene(shadow, kInfinity).kind != kPrimNone;
+  // Aim from the offset origin at the light point itself (pbrt's SpawnRayTo).
+  vec3 to_light = p + ls.dist * ls.wi - shadow.origin;
+  float length_to_light = length(to_light);
+  shadow.dir = to_light / length_to_light;
+  return intersect_scene(shadow, length_to_light * (1.0f - 1e-4f)).kind != kPrimNone;
 }
 
 #endif  // PT_LIGHTS_GLSL

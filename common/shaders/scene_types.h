@@ -97,6 +97,7 @@ struct FrameParams {
   uvec4 counts;    // x: triangles, y: spheres, z: materials, w: point lights
   uvec4 options;   // x: seed, y: roulette mode, z: depth cap, w: first row of the dispatch
   uvec4 lights;    // x: entries of the light table, yzw: unused
+  vec4 scale;      // x: the radius of the scene's bounding sphere (ray offsets scale with it)
 };
 
 #ifdef __cplusplus
@@ -106,7 +107,7 @@ static_assert(sizeof(Material) == 64);
 static_assert(sizeof(PointLight) == 32);
 static_assert(sizeof(Camera) == 96);
 static_assert(sizeof(Light) == 32);
-static_assert(sizeof(FrameParams) == 176);
+static_assert(sizeof(FrameParams) == 192);
 }  // namespace pt
 #endif
 

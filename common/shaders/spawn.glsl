@@ -10,10 +10,13 @@ const float kOffsetOrigin = 1.0f / 32.0f;       // near zero, ulps are tiny: off
 const float kOffsetFloatScale = 1.0f / 65536.0f;
 const float kOffsetIntScale = 256.0f;
 
+// Near zero, ulps shrink to nothing, so there the offset is a small fraction of the
+// scene's size (its bounding radius), not of one unit: tiny scenes need tiny offsets.
 float offset_component(float p, float n) {
   int of_i = int(kOffsetIntScale * n);
   float p_i = intBitsToFloat(floatBitsToInt(p) + (p < 0.0f ? -of_i : of_i));
-  return abs(p) < kOffsetOrigin ? p + kOffsetFloatScale * n : p_i;
+  float size = params.scale.x;
+  return abs(p) < kOffsetOrigin * size ? p + kOffsetFloatScale * size * n : p_i;
 }
 
 // p: a point on the surface, n: the unit normal on the side the new ray leaves by.

@@ -18,6 +18,7 @@ using namespace pt::glsl;
 #include "common/shaders/intersect.glsl"
 #include "common/shaders/sampling.glsl"
 #include "common/shaders/bsdf.glsl"
+#include "common/shaders/spawn.glsl"
 #include "common/shaders/lights.glsl"
 }  // namespace kernel
 }  // namespace
