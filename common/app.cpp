@@ -28,7 +28,7 @@ int guarded_main(const char* stage, const std::function<int()>& body) {
 int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels& kernels,
               GpuBackendFactory make_gpu) {
   return guarded_main(stage.name, [&] {
-    // Parse: the options of CONTRACT.md.
+    // Parse: the options of the contract (README.md).
     std::optional<Options> options = parse_options(argc, argv, stage);
     if (!options) return 0;  // --help
     install_interrupt_handlers();

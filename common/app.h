@@ -1,4 +1,4 @@
-// What a stage's main() is made of: parse, load, render, write (CONTRACT.md, "Programs").
+// What a stage's main() is made of: parse, load, render, write (the contract (README.md), "Programs").
 // Errors anywhere below become one line on stderr and the contract's exit code.
 #pragma once
 

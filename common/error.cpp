@@ -1,4 +1,4 @@
-// Warnings printed once each (CONTRACT.md: unsupported features are named once).
+// Warnings printed once each (the contract (README.md): unsupported features are named once).
 #include "common/error.h"
 
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Errors and warnings as CONTRACT.md wants them: one line that names the problem and
+// Errors and warnings as the contract (README.md) wants them: one line that names the problem and
 // what to do, and an exit code (2 bad option, 3 bad scene, 4 no device, 5 output).
 // Not part of the article: the machinery every stage's main() shares.
 #pragma once

@@ -1,4 +1,4 @@
-// The glTF 2.0 loader of CONTRACT.md "Scenes": every triangle primitive of the default
+// The glTF 2.0 loader of the contract (README.md) "Scenes": every triangle primitive of the default
 // scene with node transforms applied, metallic-roughness factors as materials,
 // KHR_lights_punctual point lights and the first camera. Checks of the file itself live
 // in gltf_validate.cpp; what is not modelled is named once on stderr.

@@ -1,5 +1,5 @@
 // Checks of a glTF 2.0 file that tinygltf leaves to its user, for the loader of
-// CONTRACT.md "Scenes": the container and JSON before tinygltf reads them, references
+// the contract (README.md) "Scenes": the container and JSON before tinygltf reads them, references
 // and the node tree after, and every accessor a triangle reads (offsets near 2^64
 // included: all sizes are added and multiplied with overflow checks).
 #include "common/gltf_validate.h"

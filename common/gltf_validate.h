@@ -1,5 +1,5 @@
 // Checks of a glTF 2.0 file that tinygltf leaves to its user, for the loader of
-// CONTRACT.md "Scenes" (gltf_loader.cpp): the file and its JSON before tinygltf reads
+// the contract (README.md) "Scenes" (gltf_loader.cpp): the file and its JSON before tinygltf reads
 // them, references and the node tree after, and every accessor a triangle reads.
 // Not part of the article: the machinery that turns a malformed file into one line.
 #pragma once

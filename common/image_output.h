@@ -1,4 +1,4 @@
-// Image output through OpenImageIO (CONTRACT.md, --out): .exr linear float32 RGB radiance,
+// Image output through OpenImageIO (the contract (README.md), --out): .exr linear float32 RGB radiance,
 // .png 8-bit sRGB (exposure, then clamp), .hdr RGBE. The target is checked before the
 // render starts and written atomically after it: a temporary file in the same folder,
 // flushed, then renamed over the target, so a failed run never leaves a broken file.

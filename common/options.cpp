@@ -1,4 +1,4 @@
-// The command line of CONTRACT.md, parsed with CLI11 (see options.h).
+// The command line of the contract (README.md), parsed with CLI11 (see options.h).
 #include "common/options.h"
 
 #include <cmath>
@@ -34,7 +34,7 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   std::string sky = "0,0,0";
 
   std::string footer = "\nBuilt-in scenes (--scene builtin:NAME):\n";
-  for (const BuiltinInfo& b : builtin_scenes()) footer += "  " + b.name + std::string(14 - std::min<size_t>(13, b.name.size()), ' ') + b.description + "\n";
+  for (const BuiltinInfo& b : builtin_scenes()) footer += "  " + b.name + std::string(17 - std::min<size_t>(16, b.name.size()), ' ') + b.description + "\n";
   CLI::App app(std::string(stage.name) + ": " + stage.summary, stage.name);
   app.footer(footer);
   app.get_formatter()->column_width(30);

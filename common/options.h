@@ -1,4 +1,4 @@
-// The command line every stage takes (CONTRACT.md, "Programs"), parsed with CLI11.
+// The command line every stage takes (the contract (README.md), "Programs"), parsed with CLI11.
 #pragma once
 
 #include <cstdint>

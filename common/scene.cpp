@@ -1,4 +1,4 @@
-// Scene helpers: material rules of CONTRACT.md, bounds, and the kernel camera.
+// Scene helpers: material rules of the contract (README.md), bounds, and the kernel camera.
 #include "common/scene.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // The scene on the host: flat arrays of triangles, spheres, materials and point lights,
-// plus the camera as the file describes it (DESIGN.md, "Scene and kernels").
+// plus the camera as the file describes it (docs/README.md, "Scene and kernels").
 // Loaded from glTF (gltf_loader.cpp) or built in (builtin_scenes.cpp).
 #pragma once
 
@@ -56,7 +56,7 @@ void add_room(Scene& s, float h, uint floor, uint ceiling, uint back, uint left,
 CameraDesc orthographic_down(glm::vec3 position, float half);
 CameraDesc orthographic_front(float z, float half);
 
-// Material constructors following CONTRACT.md's rules.
+// Material constructors following the contract (README.md)'s rules.
 Material make_diffuse(glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f), bool double_sided = false);
 Material make_metal(glm::vec3 f0, float roughness);  // roughness 0: mirror, else GGX alpha = r^2
 Material make_glass(glm::vec3 tint, float ior);

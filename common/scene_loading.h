@@ -1,4 +1,4 @@
-// Where scenes come from: a glTF 2.0 file read by the rules of CONTRACT.md ("Scenes"),
+// Where scenes come from: a glTF 2.0 file read by the rules of the contract (README.md) ("Scenes"),
 // or a built-in scene by name (builtin_scenes.cpp). Errors throw pt::Error with exit 3.
 #pragma once
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# Writes the glTF scenes shipped with the project, read by the loader of CONTRACT.md
+# Writes the glTF scenes shipped with the project, read by the loader of the contract (README.md)
 # "Scenes": cornell.gltf (the Cornell box of builtin:cornell as a file) and
 # glossy_glass.gltf (GGX metal, glass, an area light and a point light). Standard library only.
 import base64

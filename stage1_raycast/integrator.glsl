@@ -1,7 +1,7 @@
 // stage1_raycast: the article's simplest algorithm, raycasting (section "Простейший
 // алгоритм по методу бросания лучей", Eq. 2): Lout = Le. One ray per sample; the surface
 // it meets shows its emission where it emits, otherwise its base colour, as if every
-// object emitted its own colour (the article's assumption; CONTRACT.md "stage1").
+// object emitted its own colour (the article's assumption; the contract (README.md) "stage1").
 // Written in the GLSL/C++ subset of common/shaders/cpp_prelude.h: both backends run it.
 #include "common/shaders/bindings.glsl"
 #include "common/shaders/rng.glsl"

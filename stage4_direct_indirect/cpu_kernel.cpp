@@ -1,5 +1,5 @@
 // The CPU backend's copy of stage4's kernel: the same integrator.glsl, compiled as C++
-// inside its own namespace (DESIGN.md, "One integrator source, two backends").
+// inside its own namespace (docs/README.md, "One integrator source, two backends").
 #include "common/backend.h"
 #include "common/shaders/cpp_prelude.h"
 #include "stage4_direct_indirect/kernels.h"

@@ -57,7 +57,7 @@ vec3 Li(Ray ray) {
       vec3 wl = frame_to_local(frame, ls.wi);
       vec3 f = eval_lobe(lobe, material, wo, wl);
       if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f &&
-          !occluded(spawn_ray(surface.p, surface.n, ls.wi), ls.dist)) {
+          !occluded(surface.p, surface.n, ls)) {
 #ifdef PT_EQ5_PRINTED
         // As printed: f Le cos_x summed over the lights, no geometry term, no pdf (the
         // tests build this to show Lambert's formula catches it).

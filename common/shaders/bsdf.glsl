@@ -1,4 +1,4 @@
-// The materials of CONTRACT.md as functions of local directions (z = the normal on the
+// The materials of the contract (README.md) as functions of local directions (z = the normal on the
 // side the light arrives from): Lambertian diffuse, Schlick-Fresnel conductors (a perfect
 // mirror, or GGX microfacets with Smith's height-correlated masking), smooth glass with
 // exact dielectric Fresnel. f is the BRDF of Eq. (1); delta lobes are sampled, not evaluated.
@@ -110,7 +110,7 @@ vec3 lambert_brdf(vec3 albedo, vec3 wo, vec3 wi) {
 }
 
 // Which lobe a surface scatters by: a mixed material (0 < metallic < 1) is the conductor
-// with probability metallic, else the diffuse (CONTRACT.md); u is a uniform number.
+// with probability metallic, else the diffuse (the contract (README.md)); u is a uniform number.
 uint choose_lobe(Material m, float u) {
   uint kind = m.kind.x;
   if (kind != kMaterialMixed) return kind;

@@ -1,4 +1,4 @@
-// Camera rays (CONTRACT.md "Camera"): a perspective pinhole from yfov and the image aspect,
+// Camera rays (the contract (README.md) "Camera"): a perspective pinhole from yfov and the image aspect,
 // or an orthographic view of half-extents xmag, ymag; both look down the node's -Z.
 // Article: "one ray per pixel sample" of Eq. (2), shot through a jittered point of the pixel.
 #ifndef PT_CAMERA_GLSL

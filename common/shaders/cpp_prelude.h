@@ -1,4 +1,4 @@
-// The C++ half of the GLSL/C++ subset in which the integrators are written (DESIGN.md,
+// The C++ half of the GLSL/C++ subset in which the integrators are written (docs/README.md,
 // "One integrator source, two backends"). A stage's cpu_kernel.cpp includes this, opens
 // its own namespace, says `using namespace pt::glsl;` and #includes its integrator.glsl.
 //

@@ -47,7 +47,7 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   vec3 wi = d / dist;
   Material m = materials[tri.info.x];
   float cos_y = dot(-wi, n);
-  // Le from the front face only, unless double-sided (CONTRACT.md).
+  // Le from the front face only, unless double-sided (the contract (README.md)).
   if (m.emission.w > 0.0f) cos_y = abs(cos_y);
   if (!(cos_y > 0.0f) || !(dist > 0.0f)) return no_light();
   float pdf = dist2 / (cos_y * area) * pick;  // area pdf 1/A turned into solid angle

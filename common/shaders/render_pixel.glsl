@@ -1,5 +1,5 @@
 // One pass over one pixel: params.image.w samples, from sample index params.image.z on,
-// each through a point jittered uniformly inside the pixel (box filter, CONTRACT.md).
+// each through a point jittered uniformly inside the pixel (box filter, the contract (README.md)).
 // Every stage defines `vec3 Li(Ray ray)`, its estimate of the radiance along a camera ray
 // (Eq. 2, 3, 4 or 5); this file is included after it and is the same for all stages.
 #ifndef PT_RENDER_PIXEL_GLSL

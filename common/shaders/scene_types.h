@@ -1,5 +1,5 @@
 // Data layouts shared by the host (C++) and the kernels (GLSL and C++): the scene as
-// flat arrays (DESIGN.md, "Scene and kernels"). Every struct is made of 16-byte vectors
+// flat arrays (docs/README.md, "Scene and kernels"). Every struct is made of 16-byte vectors
 // so that std430 and C++ agree on offsets; the C++ side checks sizes with static_assert.
 // Article: the scene the intersection procedure of Eq. (2)-(5) searches, brute force.
 #ifndef PT_SCENE_TYPES_H
@@ -14,7 +14,7 @@ using glm::uvec4;
 using uint = std::uint32_t;
 #endif
 
-// Material kinds (CONTRACT.md, "Materials").
+// Material kinds (the contract (README.md), "Materials").
 const uint kMaterialDiffuse = 0u;    // Lambertian, albedo = base colour
 const uint kMaterialMirror = 1u;     // metallic 1, roughness 0: Schlick Fresnel, delta
 const uint kMaterialConductor = 2u;  // metallic 1, roughness > 0: GGX, alpha = roughness^2
@@ -26,7 +26,7 @@ const uint kPrimNone = 0u;
 const uint kPrimTriangle = 1u;
 const uint kPrimSphere = 2u;
 
-// Camera kinds (glTF cameras, CONTRACT.md "Camera").
+// Camera kinds (glTF cameras, the contract (README.md) "Camera").
 const uint kCameraPerspective = 0u;
 const uint kCameraOrthographic = 1u;
 

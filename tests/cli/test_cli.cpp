@@ -1,4 +1,4 @@
-// The programs as users run them (CONTRACT.md): bad input gets one clear line on stderr
+// The programs as users run them (the contract (README.md)): bad input gets one clear line on stderr
 // and the contract's exit code (2 option, 3 scene, 4 device, 5 output), and an existing
 // output file is never clobbered by a failed run.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// Tests of the glTF loader (CONTRACT.md "Scenes"; common/gltf_loader.cpp): each rule on a
+// Tests of the glTF loader (the contract (README.md) "Scenes"; common/gltf_loader.cpp): each rule on a
 // small fixture from tests/data/gltf (written by make_fixtures.py), and each kind of
 // malformed file turned into pt::Error with exit code 3 and a one-line message.
 #include <catch2/catch.hpp>

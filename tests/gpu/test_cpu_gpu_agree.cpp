@@ -1,4 +1,4 @@
-// One integrator source, two backends (DESIGN.md): the CPU and GPU images of the same
+// One integrator source, two backends (docs/README.md): the CPU and GPU images of the same
 // scene, seed and spp must agree to float rounding, not only statistically.
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,7 @@
 // Chi-square goodness-of-fit for direction samplers (after Nori's chi2test): samples are
 // binned over cos(theta) x phi on the whole sphere, the expected count of each bin is the
-// pdf integrated over the bin numerically (adaptive Simpson, split at the pdf's peak),
+// pdf integrated over the bin numerically (8 x 8 Gauss-Legendre points on a grid graded
+// towards the pdf's peak and the horizon edge),
 // bins expecting fewer than 5 samples are pooled, and the statistic's p-value is compared
 // with a Šidák-corrected significance.
 #pragma once

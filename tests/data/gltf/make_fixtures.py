@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # Writes the glTF fixtures of tests/common/test_gltf_loader.cpp (the loader of
-# CONTRACT.md "Scenes"): small valid files, each showing one rule, and malformed files,
+# the contract (README.md) "Scenes"): small valid files, each showing one rule, and malformed files,
 # each broken in one way. Standard library only; run it from anywhere.
 import base64
 import json
