@@ -147,10 +147,6 @@ float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
   return cosine_hemisphere_pdf(wi.z);
 }
 
-bool is_delta_lobe(uint lobe) {
-  return lobe == kMaterialMirror || lobe == kMaterialGlass;
-}
-
 // A delta bounce: the one direction a mirror or glass sends the light, and the weight
 // f cos / pdf it carries (the delta cancels).
 struct DeltaBounce {
