@@ -158,6 +158,7 @@ void build_light_table(Scene& scene) {
   }
   double total = 0.0;
   for (double p : power) total += p;
+  scene.light_power = total;
   double cumulative = 0.0;
   for (std::size_t i = 0; i < scene.lights.size(); i++) {
     // Lights of zero luminance (pure blue, say) still get a small share, so none is missed.
@@ -175,19 +176,7 @@ float sky_pick_probability(const Scene& scene, glm::vec3 sky) {
   float sky_lum = luminance(sky);
   if (!(sky_lum > 0.0f)) return 0.0f;
   if (scene.lights.empty()) return 1.0f;
-  double lights = 0.0;
-  for (const Triangle& t : scene.triangles) {
-    if (t.info.y == kNoLight) continue;
-    const Material& m = scene.materials[t.info.x];
-    double area = 0.5 * glm::length(glm::cross(glm::vec3(t.p1 - t.p0), glm::vec3(t.p2 - t.p0)));
-    lights += M_PI * area * (m.emission.w > 0.0f ? 2.0 : 1.0) * luminance(glm::vec3(m.emission));
-  }
-  for (const Sphere& s : scene.spheres) {
-    if (s.info.y == kNoLight) continue;
-    double r = s.center_radius.w;
-    lights += 4.0 * M_PI * M_PI * r * r * luminance(glm::vec3(scene.materials[s.info.x].emission));
-  }
-  for (const PointLight& p : scene.point_lights) lights += 4.0 * M_PI * luminance(glm::vec3(p.intensity));
+  double lights = scene.light_power;
   // The sky's power into the scene: radiance times pi times the bounding sphere's disk.
   Bounds b = scene.bounds();
   double r = b.empty() ? 1.0 : 0.5 * glm::length(b.hi - b.lo);

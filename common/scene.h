@@ -34,6 +34,7 @@ struct Scene {
   std::vector<Material> materials;       // indexed by Triangle/Sphere info.x
   std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
   std::vector<Light> lights;             // the light table: build_light_table()
+  double light_power = 0.0;              // the table's total power (luminance), same place
   std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
   int degenerate_triangles = 0;          // skipped at load (zero area or not finite)
 

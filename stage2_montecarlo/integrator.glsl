@@ -42,12 +42,8 @@ vec3 Li(Ray ray) {
     vec3 wo = frame_to_local(frame, -ray.dir);
     uint lobe = choose_lobe(material, rng_next_float());
     vec3 wi;
-    if (lobe == kMaterialMirror) {
-      DeltaBounce bounce = sample_mirror(material, wo);
-      wi = bounce.wi;
-      beta *= bounce.weight;
-    } else if (lobe == kMaterialGlass) {
-      DeltaBounce bounce = sample_glass(material, wo, surface.front, rng_next_float());
+    if (is_delta_lobe(lobe)) {  // mirror or glass: the one direction they send light
+      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, rng_next_float());
       wi = bounce.wi;
       beta *= bounce.weight;
     } else {

@@ -172,4 +172,14 @@ DeltaBounce sample_glass(Material m, vec3 wo, bool entering, float u) {
   return DeltaBounce(wi, vec3(m.base_color) * (1.0f / (eta * eta)));
 }
 
+bool is_delta_lobe(uint lobe) {
+  return lobe == kMaterialMirror || lobe == kMaterialGlass;
+}
+
+// The bounce of a delta lobe (mirror or glass); u picks reflection or refraction of glass.
+DeltaBounce sample_delta_lobe(uint lobe, Material m, vec3 wo, bool front, float u) {
+  if (lobe == kMaterialMirror) return sample_mirror(m, wo);
+  return sample_glass(m, wo, front, u);
+}
+
 #endif  // PT_BSDF_GLSL
