@@ -46,7 +46,9 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
     // Write: the image atomically, then the one summary line.
     out.write(result.film.mean_rgb(), options->width, options->height,
               image_metadata(stage.name, *options, *backend, result), options->exposure);
-    std::printf("%s\n", summary_line(stage.name, *backend, result, scene_features(scene, options->sky)).c_str());
+    std::string tags = "[scene: " + scene_features(scene, options->sky) + "]";
+    if (options->all_features) tags += " [kernel: general, --all-features]";
+    std::printf("%s\n", summary_line(stage.name, *backend, result, tags).c_str());
     if (int signo = interrupt_signal()) {
       std::fprintf(stderr, "%s: interrupted after %llu of the samples per pixel asked for; the image has them\n",
                    stage.name, (unsigned long long)result.film.spp());
@@ -78,6 +80,7 @@ RenderSettings render_settings(const Options& o, const char* stage) {
   s.sky = o.sky;
   s.roulette = o.roulette;
   s.time_budget = o.time_budget;
+  s.all_features = o.all_features;
   s.target_error = o.target_error;
   s.depth_cap = o.depth_cap;
   s.progress = true;
@@ -98,7 +101,7 @@ ImageMetadata image_metadata(const char* stage, const Options& o, const Backend&
 }
 
 std::string summary_line(const char* stage, const Backend& backend, const RenderResult& r,
-                         const std::string& features) {
+                         const std::string& tags) {
   const Film& f = r.film;
   double samples = double(f.width()) * double(f.height()) * double(f.spp());
   char line[512];
@@ -119,7 +122,7 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
   }
   if (c.zero_pdf) s += ", " + std::to_string(c.zero_pdf) + " paths ended by a zero pdf";
   if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
-  if (!features.empty()) s += " [scene: " + features + "]";
+  if (!tags.empty()) s += " " + tags;
   return s;
 }
 

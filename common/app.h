@@ -35,8 +35,9 @@ RenderSettings render_settings(const Options& options, const char* stage);
 ImageMetadata image_metadata(const char* stage, const Options& options, const Backend& backend,
                              const RenderResult& result);
 
-// The one summary line: stage, backend and device, size, spp, seconds, samples per second.
+// The one summary line: stage, backend and device, size, spp, seconds, samples per second,
+// then `tags` (e.g. "[scene: triangles; diffuse; emissive triangles]").
 std::string summary_line(const char* stage, const Backend& backend, const RenderResult& result,
-                         const std::string& features = "");
+                         const std::string& tags = "");
 
 }  // namespace pt

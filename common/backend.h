@@ -35,8 +35,14 @@ struct CpuKernel {
 // Everything a stage hands to the backends: its name, and its kernel in both forms.
 struct StageKernels {
   const char* name;                      // e.g. "stage1_raycast"
-  CpuKernel cpu;                         // the integrator compiled as C++
+  std::span<const CpuKernel> cpu;        // the integrator compiled as C++, one copy per
+                                         // feature variant (common/cpu_variants.h); one
+                                         // copy alone is the general kernel
   std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
+  bool uses_light_table = false;         // reads lights[] and point_lights[] (stage4)
+
+  // The CPU copy built for (at least) the scene features `features` (kFeature* bits).
+  const CpuKernel& cpu_for(uint features) const;
 };
 
 // What a pass reports besides its image.
@@ -50,8 +56,10 @@ class Backend {
   virtual ~Backend() = default;
   virtual std::string kind() const = 0;         // "cpu" or "gpu"
   virtual std::string device_name() const = 0;  // e.g. "2 threads", "llvmpipe (LLVM 15.0.6)"
-  // Makes the scene's arrays available to the kernel (an upload on the GPU).
-  virtual void set_scene(const Scene& scene) = 0;
+  // Makes the scene's arrays available to the kernel (an upload on the GPU), and readies
+  // the kernel specialised to `features` (kFeature* bits, common/shaders/features.glsl):
+  // arrays that no feature of the set reads are not uploaded.
+  virtual void set_scene(const Scene& scene, uint features) = 0;
   // Renders params.image.w samples of every pixel into out (width * height values of
   // render_pixel(): rgb sum, squared-luminance sum).
   virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;

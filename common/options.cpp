@@ -56,6 +56,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_option("--target-error", o.target_error,
                  "stop once the estimated relative standard error of the image mean is below E")
       ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--all-features", o.all_features,
+               "run the general kernel instead of the one specialised to the scene's features");
   std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
   if (stage.has_roulette) {
     app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")

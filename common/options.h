@@ -35,6 +35,7 @@ struct Options {
   std::uint32_t depth_cap = 1000;  // a safety net far beyond what roulette reaches
   double time_budget = 0.0;        // --time-budget SECONDS (0: none)
   double target_error = 0.0;       // --target-error E (0: none)
+  bool all_features = false;       // --all-features: the general kernel, for comparison
 };
 
 // Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with

@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/cpu_variants.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/scene.h"
@@ -29,12 +30,13 @@ double seconds_since(Clock::time_point start) {
 class CpuBackend : public Backend {
  public:
   CpuBackend(const StageKernels& kernels, unsigned threads)
-      : kernel_(kernels.cpu), threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
+      : kernels_(kernels), threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
 
   std::string kind() const override { return "cpu"; }
   std::string device_name() const override { return std::to_string(threads_) + " threads"; }
 
-  void set_scene(const Scene& scene) override {
+  void set_scene(const Scene& scene, uint features) override {
+    kernel_ = kernels_.cpu_for(features);
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data()};
   }
@@ -63,7 +65,8 @@ class CpuBackend : public Backend {
   }
 
  private:
-  CpuKernel kernel_;
+  StageKernels kernels_;
+  CpuKernel kernel_{};
   unsigned threads_;
   KernelScene scene_{};
 };
@@ -94,6 +97,10 @@ void print_progress(const RenderSettings& s, std::uint64_t done, double elapsed)
 }
 
 }  // namespace
+
+const CpuKernel& StageKernels::cpu_for(uint features) const {
+  return cpu[cpu_variant_index(features, unsigned(cpu.size()))];
+}
 
 std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads) {
   return std::make_unique<CpuBackend>(kernels, threads);
@@ -146,7 +153,7 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
 
 RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& s) {
   RenderResult result{Film(s.width, s.height), 0.0, 0.0, {}};
-  backend.set_scene(scene);
+  backend.set_scene(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky));
   FrameParams params = make_frame_params(scene, s);
   std::vector<glm::vec4> pass(std::size_t(s.width) * std::size_t(s.height));
   bool show_progress = s.progress && ::isatty(2);

@@ -26,6 +26,8 @@ struct RenderSettings {
   double time_budget = 0.0;                 // seconds; > 0: stop after the pass that spends it
   double target_error = 0.0;                // > 0: stop once the estimated relative standard
                                             // error of the image mean is below it
+  bool all_features = false;                // the general kernel, not the one specialised
+                                            // to the scene's features (--all-features)
   bool progress = false;                    // progress line on stderr
   const char* label = "render";             // names the progress line
 };

@@ -184,30 +184,55 @@ float sky_pick_probability(const Scene& scene, glm::vec3 sky) {
   return float(std::clamp(sky_power / (sky_power + lights), 0.05, 0.95));
 }
 
-std::string scene_features(const Scene& scene, glm::vec3 sky) {
-  auto join = [](const std::vector<std::string>& parts) {
-    std::string s;
-    for (const std::string& p : parts) s += (s.empty() ? "" : ", ") + p;
-    return s.empty() ? std::string("none") : s;
+uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
+  uint mask = 0u;
+  if (!scene.triangles.empty()) mask |= kFeatureTriangles;
+  if (!scene.spheres.empty()) mask |= kFeatureSpheres;
+  auto add_material = [&](const Material& m) {
+    switch (m.kind.x) {
+      case kMaterialDiffuse: mask |= kFeatureDiffuse; break;
+      case kMaterialMirror: mask |= kFeatureMirror; break;
+      case kMaterialConductor: mask |= kFeatureConductor; break;
+      case kMaterialGlass: mask |= kFeatureGlass; break;
+      default:  // mixed: the diffuse lobe, and the conductor's (a mirror when alpha is 0)
+        mask |= kFeatureMixed | kFeatureDiffuse | (m.params.y > 0.0f ? kFeatureConductor : kFeatureMirror);
+    }
   };
-  std::vector<std::string> shapes, kinds, lights;
-  if (!scene.triangles.empty()) shapes.push_back("triangles");
-  if (!scene.spheres.empty()) shapes.push_back("spheres");
-  const char* names[] = {"diffuse", "mirror", "GGX conductor", "glass", "mixed"};
-  bool used[5] = {};
-  for (const Triangle& t : scene.triangles) used[scene.materials[t.info.x].kind.x] = true;
-  for (const Sphere& s : scene.spheres) used[scene.materials[s.info.x].kind.x] = true;
-  for (int k = 0; k < 5; k++) if (used[k]) kinds.push_back(names[k]);
-  bool emissive_triangles = false, emissive_spheres = false;
+  for (const Triangle& t : scene.triangles) add_material(scene.materials[t.info.x]);
+  for (const Sphere& s : scene.spheres) add_material(scene.materials[s.info.x]);
   for (const Light& l : scene.lights) {
-    emissive_triangles |= l.info.x == kLightTriangle;
-    emissive_spheres |= l.info.x == kLightSphere;
+    if (l.info.x == kLightTriangle) mask |= kFeatureTriangleLights;
+    if (l.info.x == kLightSphere) mask |= kFeatureSphereLights;
   }
-  if (emissive_triangles) lights.push_back("emissive triangles");
-  if (emissive_spheres) lights.push_back("emissive spheres");
-  if (!scene.point_lights.empty()) lights.push_back("point lights");
-  if (sky.x > 0.0f || sky.y > 0.0f || sky.z > 0.0f) lights.push_back("sky");
-  return join(shapes) + "; " + join(kinds) + "; " + join(lights);
+  if (!scene.point_lights.empty()) mask |= kFeaturePointLights;
+  if (sky.x > 0.0f || sky.y > 0.0f || sky.z > 0.0f) mask |= kFeatureSky;
+  return mask;
+}
+
+std::string feature_names(uint mask) {
+  struct Name {
+    uint bit;
+    const char* name;
+  };
+  const Name groups[3][5] = {
+      {{kFeatureTriangles, "triangles"}, {kFeatureSpheres, "spheres"}},
+      {{kFeatureDiffuse, "diffuse"}, {kFeatureMirror, "mirror"}, {kFeatureConductor, "GGX conductor"},
+       {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}},
+      {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
+       {kFeaturePointLights, "point lights"}, {kFeatureSky, "sky"}}};
+  std::string s;
+  for (int g = 0; g < 3; g++) {
+    std::string part;
+    for (const Name& n : groups[g]) {
+      if (n.name && (mask & n.bit)) part += (part.empty() ? "" : ", ") + std::string(n.name);
+    }
+    s += (g ? "; " : "") + (part.empty() ? std::string("none") : part);
+  }
+  return s;
+}
+
+std::string scene_features(const Scene& scene, glm::vec3 sky) {
+  return feature_names(scene_feature_mask(scene, sky));
 }
 
 bool is_emissive(const Material& m) {

@@ -81,7 +81,9 @@ float sky_pick_probability(const Scene& scene, glm::vec3 sky);
 
 // What the scene uses (issue: model only what a scene requires): shapes, material kinds,
 // light kinds and the sky, e.g. "triangles; diffuse, glass; emissive triangles, sky".
-std::string scene_features(const Scene& scene, glm::vec3 sky);
+uint scene_feature_mask(const Scene& scene, glm::vec3 sky);  // kFeature* bits
+std::string feature_names(uint mask);  // "triangles; diffuse; emissive triangles"
+std::string scene_features(const Scene& scene, glm::vec3 sky);  // both of the above
 
 // Whether the material emits light (any emission component above zero).
 bool is_emissive(const Material& m);

@@ -9,7 +9,7 @@ VkDescriptorType binding_type(uint32_t binding) {
 }
 }  // namespace
 
-ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv)
+ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features)
     : device_(context.device()) {
   try {
     // The layout of bindings.glsl: what kind of buffer sits at each binding.
@@ -38,6 +38,10 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const u
     pipe_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipe_info.stage.module = module_;
     pipe_info.stage.pName = "main";
+    // The scene's features, fixed before the driver compiles the kernel.
+    VkSpecializationMapEntry entry{0, 0, sizeof features};
+    VkSpecializationInfo specialization{1, &entry, sizeof features, &features};
+    pipe_info.stage.pSpecializationInfo = &specialization;
     pipe_info.layout = layout_;
     check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_),
           "compiling the kernel");

@@ -16,7 +16,9 @@ constexpr uint32_t kParamsBinding = 4;
 
 class ComputePipeline {
  public:
-  ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv);
+  // `features`: the value of the kernel's specialization constant 0, kSceneFeatures
+  // (common/shaders/features.glsl).
+  ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features);
   ~ComputePipeline();
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;

@@ -4,6 +4,9 @@
 #include "gpu/gpu_backend.h"
 
 #include <algorithm>
+#include <map>
+#include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "common/error.h"
@@ -24,7 +27,7 @@ std::string megabytes(VkDeviceSize bytes) { return std::to_string((bytes + 999'9
 class GpuBackend : public Backend {
  public:
   GpuBackend(const StageKernels& kernels, const std::string& device)
-      : context_(device), pipeline_(context_, kernels.spirv) {
+      : context_(device), kernels_(kernels) {
     VkDevice dev = context_.device();
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = context_.command_pool();
@@ -53,12 +56,19 @@ class GpuBackend : public Backend {
   std::string kind() const override { return "gpu"; }
   std::string device_name() const override { return context_.device_name(); }
 
-  void set_scene(const Scene& scene) override {
+  void set_scene(const Scene& scene, uint features) override {
+    // Only what the kernel specialised to `features` reads is uploaded.
+    bool spheres = (features & kFeatureSpheres) != 0u, lights = kernels_.uses_light_table;
     upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
-    upload(spheres_, scene.spheres.data(), scene.spheres.size() * sizeof(Sphere));
+    upload(spheres_, scene.spheres.data(), spheres ? scene.spheres.size() * sizeof(Sphere) : 0);
     upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
-    upload(point_lights_, scene.point_lights.data(), scene.point_lights.size() * sizeof(PointLight));
-    upload(lights_, scene.lights.data(), scene.lights.size() * sizeof(Light));
+    upload(point_lights_, scene.point_lights.data(), lights ? scene.point_lights.size() * sizeof(PointLight) : 0);
+    upload(lights_, scene.lights.data(), lights ? scene.lights.size() * sizeof(Light) : 0);
+    // One pipeline per feature set, made on first use: the driver compiles the kernel with
+    // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
+    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[features];
+    if (!pipeline) pipeline = std::make_unique<ComputePipeline>(context_, kernels_.spirv, features);
+    pipeline_ = pipeline.get();
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
@@ -66,7 +76,8 @@ class GpuBackend : public Backend {
     ensure_output(VkDeviceSize(out.size_bytes()));
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_,
                                             &params_,    &output_,  &counters_,     &lights_};
-    pipeline_.bind_buffers(buffers);
+    if (!pipeline_) throw std::logic_error("run_pass before set_scene");
+    pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
     counters_.write(result.counters, sizeof result.counters);
@@ -128,7 +139,7 @@ class GpuBackend : public Backend {
       vkCmdResetQueryPool(cmd_, queries_, 0, 2);
       vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
     }
-    pipeline_.record_dispatch(cmd_, groups_x, groups_y);
+    pipeline_->record_dispatch(cmd_, groups_x, groups_y);
     if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
     // Make the shader's writes visible to the host's read of the output buffer.
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
@@ -155,7 +166,9 @@ class GpuBackend : public Backend {
   }
 
   VulkanContext context_;
-  ComputePipeline pipeline_;
+  StageKernels kernels_;
+  std::map<uint, std::unique_ptr<ComputePipeline>> pipelines_;  // by feature set
+  ComputePipeline* pipeline_ = nullptr;                          // the current scene's
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;

@@ -1,17 +1,12 @@
 // The CPU backend's copy of stage1's kernel: the same integrator.glsl, compiled as C++
-// inside its own namespace (docs/README.md, "One integrator source, two backends").
+// inside its own namespace (docs/README.md, "One integrator source, two backends"), once
+// per feature variant (common/cpu_variants.h; the build makes the copies).
 #include "common/backend.h"
+#include "common/cpu_variants.h"
 #include "common/shaders/cpp_prelude.h"
-#include "stage1_raycast/kernels.h"
 
-namespace stage1 {
+namespace stage1::PT_CPU_VARIANT_NS {
 using namespace pt::glsl;
 #include "stage1_raycast/integrator.glsl"
 #include "common/shaders/cpu_kernel_impl.h"
-}  // namespace stage1
-
-#include "stage1_raycast_spirv.h"  // generated: stage1_raycast_spirv[]
-
-pt::StageKernels stage1::kernels() {
-  return pt::StageKernels{"stage1_raycast", cpu_kernel(), stage1_raycast_spirv};
-}
+}  // namespace stage1::PT_CPU_VARIANT_NS

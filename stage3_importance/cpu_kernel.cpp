@@ -1,17 +1,12 @@
 // The CPU backend's copy of stage3's kernel: the same integrator.glsl, compiled as C++
-// inside its own namespace (docs/README.md, "One integrator source, two backends").
+// inside its own namespace (docs/README.md, "One integrator source, two backends"), once
+// per feature variant (common/cpu_variants.h; the build makes the copies).
 #include "common/backend.h"
+#include "common/cpu_variants.h"
 #include "common/shaders/cpp_prelude.h"
-#include "stage3_importance/kernels.h"
 
-namespace stage3 {
+namespace stage3::PT_CPU_VARIANT_NS {
 using namespace pt::glsl;
 #include "stage3_importance/integrator.glsl"
 #include "common/shaders/cpu_kernel_impl.h"
-}  // namespace stage3
-
-#include "stage3_importance_spirv.h"  // generated: stage3_importance_spirv[]
-
-pt::StageKernels stage3::kernels() {
-  return pt::StageKernels{"stage3_importance", cpu_kernel(), stage3_importance_spirv};
-}
+}  // namespace stage3::PT_CPU_VARIANT_NS

@@ -25,4 +25,6 @@ layout(std430, set = 0, binding = 7) readonly buffer LightBuffer { Light lights[
 uint rng_state;  // the random-number state of one invocation
 #endif
 
+#include "common/shaders/features.glsl"
+
 #endif  // PT_BINDINGS_GLSL

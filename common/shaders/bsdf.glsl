@@ -113,14 +113,14 @@ vec3 lambert_brdf(vec3 albedo, vec3 wo, vec3 wi) {
 // with probability metallic, else the diffuse (the contract (README.md)); u is a uniform number.
 uint choose_lobe(Material m, float u) {
   uint kind = m.kind.x;
-  if (kind != kMaterialMixed) return kind;
+  if (!has_feature(kFeatureMixed) || kind != kMaterialMixed) return kind;
   if (u >= m.params.x) return kMaterialDiffuse;
   return m.params.y > 0.0f ? kMaterialConductor : kMaterialMirror;
 }
 
 // f of a non-delta lobe (kMaterialDiffuse or kMaterialConductor).
 vec3 eval_lobe(uint lobe, Material m, vec3 wo, vec3 wi) {
-  if (lobe == kMaterialConductor) return ggx_conductor_brdf(vec3(m.base_color), m.params.y, wo, wi);
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_conductor_brdf(vec3(m.base_color), m.params.y, wo, wi);
   return lambert_brdf(vec3(m.base_color), wo, wi);
 }
 
@@ -132,7 +132,7 @@ struct LobeSample {
 };
 
 LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
-  if (lobe == kMaterialConductor) {
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) {
     float alpha = m.params.y;
     vec3 h = sample_ggx_vndf(wo, alpha, u);
     vec3 wi = 2.0f * dot(wo, h) * h - wo;
@@ -143,7 +143,7 @@ LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
 }
 
 float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
-  if (lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.params.y);
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.params.y);
   return cosine_hemisphere_pdf(wi.z);
 }
 
@@ -173,12 +173,13 @@ DeltaBounce sample_glass(Material m, vec3 wo, bool entering, float u) {
 }
 
 bool is_delta_lobe(uint lobe) {
-  return lobe == kMaterialMirror || lobe == kMaterialGlass;
+  return (has_feature(kFeatureMirror) && lobe == kMaterialMirror) ||
+         (has_feature(kFeatureGlass) && lobe == kMaterialGlass);
 }
 
 // The bounce of a delta lobe (mirror or glass); u picks reflection or refraction of glass.
 DeltaBounce sample_delta_lobe(uint lobe, Material m, vec3 wo, bool front, float u) {
-  if (lobe == kMaterialMirror) return sample_mirror(m, wo);
+  if (!has_feature(kFeatureGlass) || lobe == kMaterialMirror) return sample_mirror(m, wo);
   return sample_glass(m, wo, front, u);
 }
 

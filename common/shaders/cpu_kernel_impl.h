@@ -20,6 +20,6 @@ inline void cpu_render_rows(uint y0, uint y1, glm::vec4* out) {
   }
 }
 
-inline pt::CpuKernel cpu_kernel() {
+pt::CpuKernel cpu_kernel() {
   return pt::CpuKernel{&cpu_bind, &cpu_render_rows};
 }

@@ -100,8 +100,12 @@ Hit hit_sphere(Ray ray, uint index, Hit best) {
 Hit intersect_scene(Ray ray, float t_max) {
   Hit best = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
   RayShear rs = make_ray_shear(ray.dir);
-  for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
-  for (uint i = 0u; i < params.counts.y; i++) best = hit_sphere(ray, i, best);
+  if (has_feature(kFeatureTriangles)) {
+    for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
+  }
+  if (has_feature(kFeatureSpheres)) {
+    for (uint i = 0u; i < params.counts.y; i++) best = hit_sphere(ray, i, best);
+  }
   return best;
 }
 
@@ -114,7 +118,7 @@ struct Surface {
 };
 
 Surface surface_at(Ray ray, Hit hit) {
-  if (hit.kind == kPrimTriangle) {
+  if (!has_feature(kFeatureSpheres) || hit.kind == kPrimTriangle) {
     Triangle tri = triangles[hit.prim];
     vec3 p0 = vec3(tri.p0);
     vec3 p1 = vec3(tri.p1);

@@ -124,14 +124,18 @@ LightSample sample_sky(vec3 n, vec2 u, float pick) {
 LightSample sample_light(vec3 p, vec3 n) {
   float u = rng_next_float();
   vec2 u2 = rng_next_vec2();
-  float sky_pick = params.sky.w;
+  float sky_pick = has_feature(kFeatureSky) ? params.sky.w : 0.0f;
   if (u < sky_pick) return sample_sky(n, u2, sky_pick);
   if (params.lights.x == 0u) return no_light();
   uint index = pick_light((u - sky_pick) / (1.0f - sky_pick));
   Light light = lights[index];
   float pick = (1.0f - sky_pick) * light.pick.x;
-  if (light.info.x == kLightTriangle) return sample_triangle_light(light.info.y, p, u2, pick);
-  if (light.info.x == kLightSphere) return sample_sphere_light(light.info.y, p, u2, pick);
+  if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.info.x == kLightTriangle) {
+    return sample_triangle_light(light.info.y, p, u2, pick);
+  }
+  if (!has_feature(kFeaturePointLights) || light.info.x == kLightSphere) {
+    return sample_sphere_light(light.info.y, p, u2, pick);
+  }
   return sample_point_light(light.info.y, p, pick);
 }
 

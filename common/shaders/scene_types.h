@@ -41,6 +41,22 @@ const uint kLightTriangle = 0u;  // an emissive triangle: a point uniform on its
 const uint kLightSphere = 1u;    // an emissive sphere: a direction in the cone it subtends
 const uint kLightPoint = 2u;     // a KHR_lights_punctual point light: a delta
 
+// Scene features (issue "model only what a scene requires"): the loader derives the set a
+// scene uses (scene.h: scene_feature_mask), and each kernel is specialised to it
+// (features.glsl): code for a feature the scene lacks is never run, nor compiled in.
+const uint kFeatureTriangles = 1u << 0u;        // shapes
+const uint kFeatureSpheres = 1u << 1u;
+const uint kFeatureDiffuse = 1u << 2u;          // lobes a material may scatter by
+const uint kFeatureMirror = 1u << 3u;
+const uint kFeatureConductor = 1u << 4u;        // GGX
+const uint kFeatureGlass = 1u << 5u;
+const uint kFeatureMixed = 1u << 6u;            // a material that picks one of two lobes
+const uint kFeatureTriangleLights = 1u << 7u;   // lights
+const uint kFeatureSphereLights = 1u << 8u;
+const uint kFeaturePointLights = 1u << 9u;
+const uint kFeatureSky = 1u << 10u;
+const uint kFeatureAll = (1u << 11u) - 1u;
+
 // Event counters the kernels keep (bindings.glsl: counters[]), reported by the summary.
 const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a safety net)
 const uint kCounterZeroPdf = 1u;        // paths ended by a zero pdf or a non-finite weight

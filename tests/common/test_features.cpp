@@ -2,6 +2,7 @@
 // summary line: shapes, material kinds, light kinds and the sky.
 #include <catch2/catch.hpp>
 
+#include "common/cpu_variants.h"
 #include "common/scene_loading.h"
 
 using namespace pt;
@@ -17,4 +18,30 @@ TEST_CASE("features: built-in and shipped scenes report what they use", "[featur
         "triangles; diffuse, GGX conductor, glass; emissive triangles, point lights");
   Scene empty;
   CHECK(scene_features(empty, glm::vec3(0.0f)) == "none; none; none");
+}
+
+TEST_CASE("features: the CPU runs the smallest compiled variant that covers the scene", "[features]") {
+  Scene cornell = make_builtin_scene("cornell");
+  uint mask = scene_feature_mask(cornell, glm::vec3(0.0f));
+  CHECK(mask == (kFeatureTriangles | kFeatureDiffuse | kFeatureTriangleLights));
+  CHECK(cpu_variant_index(mask, 16) == 0u);  // no sphere, delta, GGX or other-light code
+  CHECK(cpu_variant_features(0, 16) == kCpuBaseFeatures);
+  // A mixed material brings its two lobes; alpha 0 makes the metal lobe a mirror.
+  Scene mixed;
+  mixed.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, mixed.add_material(make_gltf_material({1, 1, 1}, 0.5f, 0.0f, 0.0f, 1.5f, {}, false)));
+  CHECK(scene_feature_mask(mixed, glm::vec3(0.0f)) ==
+        (kFeatureTriangles | kFeatureMixed | kFeatureDiffuse | kFeatureMirror));
+  // For every feature set: the variant chosen covers it, and no smaller variant does.
+  for (unsigned count : {1u, 2u, 8u, 16u}) {
+    for (uint features = 0u; features <= kFeatureAll; features++) {
+      unsigned chosen = cpu_variant_index(features, count);
+      REQUIRE(chosen < count);
+      REQUIRE((cpu_variant_features(chosen, count) & features) == features);
+      for (unsigned other = 0; other < count; other++) {
+        if ((cpu_variant_features(other, count) & features) == features) {
+          REQUIRE((cpu_variant_features(chosen, count) & ~cpu_variant_features(other, count)) == 0u);
+        }
+      }
+    }
+  }
 }

@@ -31,7 +31,8 @@ TEST_CASE("stage2 erratum 1: the printed factor 1/(2 pi N) fails the furnace tes
   RenderSettings s = settings(8, 8, 1024, test_seed(600));
   ExpectedImage want(64, glm::dvec3(f.emission / (1.0 - f.albedo)));
 
-  StageKernels as_printed{"stage2 as printed", printed::cpu_kernel(), {}};
+  const CpuKernel printed_cpu[] = {printed::cpu_kernel()};
+  StageKernels as_printed{"stage2 as printed", printed_cpu, {}};
   Film wrong = render(*make_cpu_backend(as_printed), scene, s).film;
   CHECK_FALSE(check_pixels(wrong, want).passed());
   // The printed factor is 4 pi^2 too small per bounce: effective albedo 0.5 / (4 pi^2).

@@ -31,7 +31,8 @@ TEST_CASE("stage4 erratum 5: Eq. (5) as printed (no geometry term, no pdf) fails
   RenderSettings s = settings(size, size, 256, test_seed(3200));
   s.roulette = kRouletteThroughput;
   Scene scene = analytic::make_floor_light(a);
-  Film printed = render(*make_cpu_backend({"stage4 as printed", eq5_printed::cpu_kernel(), {}}), scene, s).film;
+  const CpuKernel printed_cpu[] = {eq5_printed::cpu_kernel()};
+  Film printed = render(*make_cpu_backend({"stage4 as printed", printed_cpu, {}, true}), scene, s).film;
   CHECK_FALSE(check_pixels(printed, expected).passed());
   Film right = render(*make_cpu_backend(stage4::kernels()), scene, s).film;
   CHECK(check_pixels(right, expected).passed());
