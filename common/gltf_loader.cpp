@@ -307,7 +307,12 @@ Scene load_gltf(const std::string& path) {
   warn_unmodelled(model, path);
   SceneBuilder builder(model, path);
   for (int root : scene_roots(model, parents)) builder.add_tree(root);
-  return builder.take();
+  Scene scene = builder.take();
+  if (scene.degenerate_triangles > 0) {
+    warn_once(path + ": " + std::to_string(scene.degenerate_triangles) +
+              " degenerate triangle(s) (zero area or non-finite) skipped");
+  }
+  return scene;
 }
 
 }  // namespace pt

@@ -102,6 +102,25 @@ TEST_CASE("cli: a good render writes the image and prints one summary line", "[c
   CHECK(peak == 17.0f);  // the ceiling light's red radiance, linear in the EXR
 }
 
+TEST_CASE("cli: the summary names the scene's features, and the general kernel when forced", "[cli][features]") {
+  Run r = run("--backend cpu --width 8 --height 8 --out " + (scratch() / "f.exr").string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("[scene: triangles; diffuse; emissive triangles]") != std::string::npos);
+  CHECK(r.out.find("[kernel: general") == std::string::npos);
+  Run general = run("--backend cpu --width 8 --height 8 --all-features --out " + (scratch() / "g.exr").string());
+  REQUIRE(general.code == 0);
+  CHECK(general.out.find("[kernel: general, --all-features]") != std::string::npos);
+}
+
+TEST_CASE("cli: degenerate triangles are counted, skipped and said once", "[cli][features]") {
+  Run r = run("--backend cpu --width 8 --height 8 --scene " PT_TEST_DATA_DIR "/gltf/degenerate.gltf --out " +
+              (scratch() / "d.exr").string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("3 degenerate triangle(s) (zero area or non-finite) skipped") != std::string::npos);
+}
+
 TEST_CASE("cli: --help lists every option and the built-in scenes", "[cli]") {
   Run r = run("--help");
   CHECK(r.code == 0);
