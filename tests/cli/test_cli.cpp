@@ -186,6 +186,25 @@ TEST_CASE("cli: without a Vulkan driver, gpu exits 4 and auto falls back to the 
 }
 
 namespace {
+// Waits (up to 60 s) until process `pid` runs the stage program (the forked test process
+// before exec has Catch's own handlers) and catches signal `signo` (/proc/PID/status SigCgt).
+void wait_for_handler(pid_t pid, int signo) {
+  const fs::path program = fs::canonical(PT_STAGE1_BIN);
+  for (int i = 0; i < 6000; i++) {
+    std::error_code ec;
+    if (fs::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec) != program) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      continue;
+    }
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    while (std::getline(status, line)) {
+      if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) >> (signo - 1)) & 1u) return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
 // Starts a long render, sends `signals` signals after `delay_ms`, returns the exit code.
 int interrupted_render(const std::string& backend, const std::string& out, int signo, int signals, int delay_ms,
                        const char* size = "64") {
@@ -199,6 +218,9 @@ int interrupted_render(const std::string& backend, const std::string& out, int s
             "1000000", "--out", out.c_str(), (char*)nullptr);
     ::_exit(127);
   }
+  // On a loaded machine start-up can take longer than any fixed delay: wait until the program
+  // has installed its handlers (the signal is in /proc/PID/status SigCgt), then the delay.
+  wait_for_handler(pid, signo);
   std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
   for (int i = 0; i < signals; i++) {
     // Signals of one kind do not queue: a second one sent at once would merge with the first.
@@ -214,7 +236,7 @@ int interrupted_render(const std::string& backend, const std::string& out, int s
 TEST_CASE("cli: Ctrl-C or SIGTERM at any moment writes a whole image of the samples done, exit 130 / 143",
           "[cli][interrupt]") {
   std::mt19937 rng(7);
-  std::uniform_int_distribution<int> delay(500, 1500);  // after start-up (loading Vulkan, the scene)
+  std::uniform_int_distribution<int> delay(0, 1000);  // after the handlers are installed
   for (const char* backend : {"cpu", "gpu"}) {
     for (int i = 0; i < 4; i++) {
       std::string out = (scratch() / ("interrupted_" + std::to_string(i) + ".exr")).string();
