@@ -2,8 +2,11 @@
 #include "common/app.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <new>
+#include <optional>
 
+#include "common/checkpoint.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/scene_loading.h"
@@ -40,12 +43,55 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
       std::fprintf(stderr, "%s: the scene's %zu point light(s) are delta lights: only light sampling (stage4) sees them\n",
                    stage.name, scene.point_lights.size());
     }
-    // Render: passes on the CPU or the GPU.
+    // Render: passes on the CPU or the GPU, from a checkpoint if asked, saving one if asked.
+    RenderSettings settings = render_settings(*options, stage.name);
+    const std::uint64_t key = render_key(stage.name, scene, settings);
+    const std::string checkpoint = options->out + ".ckpt";
+    std::optional<RenderResult> resumed;
+    if (options->resume) {
+      resumed = load_checkpoint(options->resume_path, key, stage.name, options->width, options->height);
+      if (resumed->film.spp() > settings.spp) {
+        throw Error(kExitBadOption, "checkpoint '" + options->resume_path + "' has " +
+                                        std::to_string(resumed->film.spp()) + " spp, more than --spp " +
+                                        std::to_string(settings.spp) + "; ask for at least that many");
+      }
+      settings.resume = &*resumed;
+    }
+    if (options->checkpoint > 0.0) {
+      settings.save_seconds = options->checkpoint;
+      settings.save = [&](const RenderResult& state) { save_checkpoint(checkpoint, key, stage.name, state); };
+    }
     std::unique_ptr<Backend> backend = make_backend(*options, kernels, make_gpu);
-    RenderResult result = render(*backend, scene, render_settings(*options, stage.name));
+    RenderResult result = render(*backend, scene, settings);
+    if (!result.device_error.empty() && options->backend == "auto" && backend->kind() == "gpu") {
+      // The device failed: never retried; the CPU goes on from the samples done.
+      std::fprintf(stderr, "%s: %s; --backend auto falls back to the CPU and goes on from the %llu spp done\n",
+                   stage.name, result.device_error.c_str(), (unsigned long long)result.film.spp());
+      backend = make_cpu_backend(kernels, options->threads);
+      RenderResult so_far = std::move(result);
+      settings.resume = &so_far;
+      result = render(*backend, scene, settings);
+    }
+    if (!result.device_error.empty()) {
+      // --backend gpu: the samples done so far are written, then the device's error, exit 4.
+      if (result.film.spp() > 0) {
+        out.write(result.film.mean_rgb(), options->width, options->height,
+                  image_metadata(stage.name, *options, *backend, result), options->exposure);
+      }
+      std::fprintf(stderr, "%s: %s; %s\n", stage.name, result.device_error.c_str(),
+                   result.film.spp() > 0 ? ("the " + std::to_string(result.film.spp()) + " spp done are in " +
+                                            options->out).c_str()
+                                         : "nothing was rendered");
+      return int(kExitNoDevice);
+    }
     // Write: the image atomically, then the one summary line.
     out.write(result.film.mean_rgb(), options->width, options->height,
               image_metadata(stage.name, *options, *backend, result), options->exposure);
+    // A finished render needs its checkpoint no more.
+    if (result.film.spp() >= settings.spp && (options->checkpoint > 0.0 || options->resume)) {
+      std::error_code ignored;
+      std::filesystem::remove(checkpoint, ignored);
+    }
     std::string tags = "[scene: " + scene_features(scene, options->sky) + "]";
     if (options->all_features) tags += " [kernel: general, --all-features]";
     std::printf("%s\n", summary_line(stage.name, *backend, result, tags).c_str());

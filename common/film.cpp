@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 namespace pt {
 
@@ -14,6 +16,12 @@ void Film::add_pass(std::span<const glm::vec4> pass, std::uint64_t samples) {
     for (int c = 0; c < 4; c++) sums_[4 * i + c] += double(pass[i][c]);
   }
   spp_ += samples;
+}
+
+void Film::restore(std::uint64_t spp, std::vector<double> sums) {
+  if (sums.size() != sums_.size()) throw std::invalid_argument("Film::restore: wrong number of sums");
+  sums_ = std::move(sums);
+  spp_ = spp;
 }
 
 void Film::merge(const Film& other) {

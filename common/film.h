@@ -25,6 +25,11 @@ class Film {
   int height() const { return height_; }
   std::uint64_t spp() const { return spp_; }
 
+  // The raw sums (per pixel r, g, b, squared luminance), for checkpoints; restore() puts
+  // saved ones back (sums.size() must be width * height * 4).
+  const std::vector<double>& sums() const { return sums_; }
+  void restore(std::uint64_t spp, std::vector<double> sums);
+
   // The pixel's value: the mean radiance of its samples (box filter).
   glm::dvec3 mean(int x, int y) const;
   // The image as float RGB, row after row from the top (what image_output writes).

@@ -58,6 +58,12 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
       ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--all-features", o.all_features,
                "run the general kernel instead of the one specialised to the scene's features");
+  app.add_option("--checkpoint", o.checkpoint,
+                 "save the running render to <out>.ckpt every SECONDS (and at Ctrl-C); removed when it ends")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--resume", o.resume_path,
+                 "continue the checkpoint PATH (default <out>.ckpt) to --spp; same options as the saved render")
+      ->expected(0, 1);
   std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
   if (stage.has_roulette) {
     app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
@@ -76,6 +82,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.sky = parse_rgb(sky, "--sky");
+  o.resume = app.count("--resume") > 0;
+  if (o.resume && o.resume_path.empty()) o.resume_path = o.out + ".ckpt";
   // With a time or error target and no --spp, the samples are not capped.
   if ((o.time_budget > 0.0 || o.target_error > 0.0) && app.count("--spp") == 0) o.spp = 0xffffffffu;
   o.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;

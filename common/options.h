@@ -36,6 +36,9 @@ struct Options {
   double time_budget = 0.0;        // --time-budget SECONDS (0: none)
   double target_error = 0.0;       // --target-error E (0: none)
   bool all_features = false;       // --all-features: the general kernel, for comparison
+  double checkpoint = 0.0;         // --checkpoint SECONDS: save <out>.ckpt this often (0: never)
+  bool resume = false;             // --resume [PATH]: continue a checkpoint
+  std::string resume_path;         // its path (default <out>.ckpt)
 };
 
 // Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with

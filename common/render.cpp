@@ -152,36 +152,56 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
 }
 
 RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& s) {
-  RenderResult result{Film(s.width, s.height), 0.0, 0.0, {}};
-  backend.set_scene(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky));
+  RenderResult result = s.resume ? *s.resume : RenderResult{Film(s.width, s.height), 0.0, 0.0, {}, 0, {}};
+  result.device_error.clear();
+  const double seconds_before = result.seconds;
   FrameParams params = make_frame_params(scene, s);
   std::vector<glm::vec4> pass(std::size_t(s.width) * std::size_t(s.height));
   bool show_progress = s.progress && ::isatty(2);
   bool shown = false;
-  Clock::time_point start = Clock::now();
-  std::uint64_t done = 0;
-  for (std::uint64_t index = 0; done < s.spp; index++) {
+  Clock::time_point start = Clock::now(), saved = start;
+  std::uint64_t done = result.film.spp();
+  try {
+    backend.set_scene(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky));
+  } catch (const Error& e) {  // a device that cannot hold the scene: nothing rendered yet
+    if (e.code() != kExitNoDevice) throw;
+    result.device_error = e.what();
+    return result;
+  }
+  for (std::uint64_t index = result.passes; done < s.spp; index++) {
     std::uint64_t n = std::min(pass_samples(index), s.spp - done);
     params.image.z = uint(done);
     params.image.w = uint(n);
-    PassResult pass_result = backend.run_pass(params, pass);
+    PassResult pass_result;
+    try {
+      pass_result = backend.run_pass(params, pass);
+    } catch (const Error& e) {  // a lost device: keep the samples done so far
+      if (e.code() != kExitNoDevice) throw;
+      result.device_error = e.what();
+      if (s.save && done > 0) s.save(result);
+      break;
+    }
     result.kernel_seconds += pass_result.kernel_seconds;
     result.counters.add(pass_result);
     result.film.add_pass(pass, n);
     done += n;
+    result.passes = index + 1;
     double elapsed = seconds_since(start);
+    result.seconds = seconds_before + elapsed;
     if (show_progress && elapsed > 1.0 && done < s.spp) print_progress(s, done, elapsed), shown = true;
-    // Ctrl-C or SIGTERM: stop here; the samples done so far make a correct image.
-    if (interrupt_signal() != 0) break;
-    // The user's trade of time for accuracy: every pass ends a correct image of its spp.
-    if (s.time_budget > 0.0 && elapsed >= s.time_budget) break;
-    if (s.target_error > 0.0 && done >= kMinSamplesForError &&
-        result.film.relative_standard_error() <= s.target_error) {
-      break;
+    // Ctrl-C or SIGTERM: stop here; the samples done so far make a correct image. Or the
+    // user's trade of time for accuracy: every pass ends a correct image of its spp.
+    bool stop = interrupt_signal() != 0 || (s.time_budget > 0.0 && elapsed >= s.time_budget) ||
+                (s.target_error > 0.0 && done >= kMinSamplesForError &&
+                 result.film.relative_standard_error() <= s.target_error);
+    if (s.save && done < s.spp && (stop || seconds_since(saved) >= s.save_seconds)) {
+      s.save(result);
+      saved = Clock::now();
     }
+    if (stop) break;
   }
   if (shown) std::fprintf(stderr, "\r%*s\r", 79, "");
-  result.seconds = seconds_since(start);
+  result.seconds = seconds_before + seconds_since(start);
   return result;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -30,6 +31,12 @@ struct RenderSettings {
                                             // to the scene's features (--all-features)
   bool progress = false;                    // progress line on stderr
   const char* label = "render";             // names the progress line
+  // Checkpoints (common/checkpoint.h): continue from this state instead of an empty film,
+  // and hand the state to `save` every save_seconds, at an interrupt and at a device
+  // failure (never after a pass cut short by --spp: the schedule must stay whole).
+  const struct RenderResult* resume = nullptr;
+  std::function<void(const struct RenderResult&)> save;
+  double save_seconds = 0.0;
 };
 
 // "No pixel" in kCounterNonFinitePixel.
@@ -49,6 +56,9 @@ struct RenderResult {
   double seconds = 0.0;         // wall time of the passes
   double kernel_seconds = 0.0;  // time the kernels ran (GPU: timestamp queries)
   RenderCounters counters;
+  std::uint64_t passes = 0;  // passes done: the next pass's place in the schedule
+  std::string device_error;  // set when the backend failed (exit 4): the film has the
+                             // samples done before it
 };
 
 // Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's

@@ -4,6 +4,7 @@
 #include "gpu/gpu_backend.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 #include "common/render.h"
 #include "common/scene.h"
 #include "gpu/compute_pipeline.h"
+#include "gpu/fault.h"
 
 namespace pt::gpu {
 
@@ -22,7 +24,11 @@ constexpr uint32_t kGroupSize = 8;                      // kernel_main.glsl's lo
 constexpr uint64_t kPixelSamplesPerDispatch = 1u << 22;  // about 4 million camera samples
 constexpr uint64_t kFenceTimeoutNs = 120'000'000'000;    // a dispatch that takes 2 minutes is hung
 
-std::string megabytes(VkDeviceSize bytes) { return std::to_string((bytes + 999'999) / 1'000'000) + " MB"; }
+std::string megabytes(VkDeviceSize bytes) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g MB", double(bytes) / 1e6);
+  return text;
+}
 
 class GpuBackend : public Backend {
  public:
@@ -73,6 +79,9 @@ class GpuBackend : public Backend {
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     const uint32_t width = params.image.x, height = params.image.y;
+    // A lost device is never used again: its results could not be trusted.
+    if (lost_) throw Error(kExitNoDevice, "Vulkan device '" + context_.device_name() + "' was lost earlier and is not retried");
+    passes_++;
     ensure_output(VkDeviceSize(out.size_bytes()));
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_,
                                             &params_,    &output_,  &counters_,     &lights_};
@@ -118,13 +127,20 @@ class GpuBackend : public Backend {
     output_ = Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   }
 
-  // A storage buffer larger than the device's limit cannot be bound: say so before trying.
+  // A storage buffer larger than the device's limit cannot be bound, nor one larger than
+  // its memory allocated: say so before trying.
   void check_range(VkDeviceSize bytes, const char* what) const {
     VkDeviceSize limit = context_.properties().limits.maxStorageBufferRange;
     if (bytes > limit) {
-      throw Error(kExitNoDevice, std::string(what) + " needs a " + megabytes(bytes) + " buffer but device '" +
-                                     context_.device_name() + "' allows " + megabytes(limit) +
-                                     "; render a smaller image or use --backend cpu");
+      throw Error(kExitNoDevice, std::string(what) + " needs a " + megabytes(bytes) + " (" + std::to_string(bytes) +
+                                     " bytes) buffer but device '" + context_.device_name() + "' allows " +
+                                     megabytes(limit) + " (" + std::to_string(limit) +
+                                     " bytes); render a smaller image or scene, or use --backend cpu");
+    }
+    if (bytes > context_.heap_size()) {
+      throw Error(kExitNoDevice, std::string(what) + " needs " + megabytes(bytes) + " of memory but device '" +
+                                     context_.device_name() + "' has " + megabytes(context_.heap_size()) +
+                                     "; render a smaller image or scene, or use --backend cpu");
     }
   }
 
@@ -151,8 +167,14 @@ class GpuBackend : public Backend {
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd_;
     check(vkResetFences(dev, 1, &fence_), "resetting a fence");
-    check(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "submitting the kernel");
-    VkResult waited = vkWaitForFences(dev, 1, &fence_, VK_TRUE, kFenceTimeoutNs);
+    VkResult submitted = vkQueueSubmit(context_.queue(), 1, &submit, fence_);
+    VkResult waited = submitted == VK_SUCCESS ? vkWaitForFences(dev, 1, &fence_, VK_TRUE, kFenceTimeoutNs) : submitted;
+    if (fault().device_lost_pass == passes_) waited = VK_ERROR_DEVICE_LOST;  // PT_FAULT=device_lost:pass=N
+    if (waited == VK_ERROR_DEVICE_LOST) {
+      lost_ = true;
+      throw Error(kExitNoDevice, "Vulkan device '" + context_.device_name() + "' was lost during pass " +
+                                     std::to_string(passes_) + " (VK_ERROR_DEVICE_LOST) and is not retried");
+    }
     if (waited == VK_TIMEOUT) {
       throw Error(kExitNoDevice, "the Vulkan device did not finish a pass within 2 minutes; use --backend cpu");
     }
@@ -172,6 +194,8 @@ class GpuBackend : public Backend {
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
+  std::uint64_t passes_ = 0;  // passes begun on this device (PT_FAULT counts them)
+  bool lost_ = false;         // VK_ERROR_DEVICE_LOST seen: the device is not used again
   Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_;
 };
 

@@ -5,7 +5,12 @@
 #include <cctype>
 #include <cstdlib>
 
+#include <atomic>
+#include <cstdio>
+#include <cstring>
+
 #include "common/error.h"
+#include "gpu/fault.h"
 
 namespace pt::gpu {
 
@@ -41,6 +46,24 @@ std::string lower(std::string s) {
   return s;
 }
 
+std::atomic<int> g_validation_errors{0};
+
+// PT_VULKAN_VALIDATION=1: the Khronos validation layer checks every call; its errors are
+// printed and counted (validation_errors()), its warnings printed.
+bool validation_requested() {
+  const char* v = std::getenv("PT_VULKAN_VALIDATION");
+  return v && *v && std::strcmp(v, "0") != 0;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                     VkDebugUtilsMessageTypeFlagsEXT,
+                                                     const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+  bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  if (error) g_validation_errors++;
+  std::fprintf(stderr, "vulkan validation %s: %s\n", error ? "error" : "warning", data->pMessage);
+  return VK_FALSE;
+}
+
 const char* kNoVulkanHint =
     "install a Vulkan driver (on Debian: apt-get install mesa-vulkan-drivers) or use --backend cpu";
 
@@ -62,7 +85,7 @@ VulkanContext::VulkanContext(const std::string& device_request) {
 }
 
 void VulkanContext::create(const std::string& device_request) {
-  if (volkInitialize() != VK_SUCCESS) {
+  if (fault().no_loader || volkInitialize() != VK_SUCCESS) {
     throw Error(kExitNoDevice, std::string("no Vulkan loader (libvulkan.so.1) on this machine; ") + kNoVulkanHint);
   }
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -70,15 +93,42 @@ void VulkanContext::create(const std::string& device_request) {
   app.apiVersion = VK_API_VERSION_1_1;
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
+  const char* layer = "VK_LAYER_KHRONOS_validation";
+  const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                          VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messenger.pfnUserCallback = on_validation_message;
+  const bool validate = validation_requested();
+  if (validate) {
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    bool found = false;
+    for (const VkLayerProperties& l : layers) found = found || std::strcmp(l.layerName, layer) == 0;
+    if (!found) {
+      throw Error(kExitNoDevice, "PT_VULKAN_VALIDATION is set but the layer VK_LAYER_KHRONOS_validation is not "
+                                 "installed; apt-get install vulkan-validationlayers, or unset PT_VULKAN_VALIDATION");
+    }
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &layer;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &extension;
+    info.pNext = &messenger;  // also checks vkCreateInstance and vkDestroyInstance
+  }
   VkResult r = vkCreateInstance(&info, nullptr, &instance_);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER) throw Error(kExitNoDevice, std::string("no Vulkan driver; ") + kNoVulkanHint);
   check(r, "creating an instance");
   volkLoadInstance(instance_);
+  if (validate) check(vkCreateDebugUtilsMessengerEXT(instance_, &messenger, nullptr, &messenger_), "creating the validation messenger");
 
   uint32_t count = 0;
   check(vkEnumeratePhysicalDevices(instance_, &count, nullptr), "listing devices");
   std::vector<VkPhysicalDevice> devices(count);
   check(vkEnumeratePhysicalDevices(instance_, &count, devices.data()), "listing devices");
+  if (fault().no_device) count = 0;
   if (count == 0) {
     throw Error(kExitNoDevice, std::string("no Vulkan device found; ") + kNoVulkanHint);
   }
@@ -100,6 +150,18 @@ void VulkanContext::create(const std::string& device_request) {
     throw Error(kExitNoDevice, "no Vulkan device matches '" + request + "'; the devices are " + listing);
   }
   physical_ = devices[best];
+  // The largest heap that host-visible memory (which the buffers use) comes from.
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(physical_, &mem);
+  for (uint32_t i = 0; i < mem.memoryTypeCount; i++) {
+    if (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
+      heap_size_ = std::max(heap_size_, mem.memoryHeaps[mem.memoryTypes[i].heapIndex].size);
+    }
+  }
+  if (fault().small_limits) {
+    properties_.limits.maxStorageBufferRange = uint32_t(kFaultStorageBufferRange);
+    heap_size_ = kFaultHeapSize;
+  }
 
   // One queue family that can compute.
   uint32_t families = 0;
@@ -141,9 +203,12 @@ void VulkanContext::release() {
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
+  if (messenger_) vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
   if (instance_) vkDestroyInstance(instance_, nullptr);
-  device_ = VK_NULL_HANDLE, pool_ = VK_NULL_HANDLE, instance_ = VK_NULL_HANDLE;
+  device_ = VK_NULL_HANDLE, pool_ = VK_NULL_HANDLE, instance_ = VK_NULL_HANDLE, messenger_ = VK_NULL_HANDLE;
 }
+
+int validation_errors() { return g_validation_errors.load(); }
 
 uint32_t VulkanContext::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
                                     VkMemoryPropertyFlags preferred) const {

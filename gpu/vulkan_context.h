@@ -37,6 +37,8 @@ class VulkanContext {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   std::string device_name() const { return properties_.deviceName; }
   bool has_timestamps() const { return timestamp_bits_ > 0; }
+  // The largest heap of host-visible memory, in bytes (what every buffer is made of).
+  VkDeviceSize heap_size() const { return heap_size_; }
 
   // A memory type index with all of `required` among `type_bits`, preferring `preferred`.
   uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) const;
@@ -53,6 +55,11 @@ class VulkanContext {
   VkPhysicalDeviceProperties properties_{};
   uint32_t queue_family_ = 0;
   uint32_t timestamp_bits_ = 0;
+  VkDeviceSize heap_size_ = 0;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;  // PT_VULKAN_VALIDATION only
 };
+
+// Errors the validation layer reported so far in this process (PT_VULKAN_VALIDATION=1).
+int validation_errors();
 
 }  // namespace pt::gpu

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "gpu/gpu_backend.h"
+#include "gpu/vulkan_context.h"
 #include "stage1_raycast/kernels.h"
 #include "tests/support/test_render.h"
 
@@ -19,5 +20,12 @@ int main(int argc, char** argv) {
     return 77;
   }
   pt::test::backend_under_test = "gpu";
-  return Catch::Session().run(argc, argv);
+  int failed = Catch::Session().run(argc, argv);
+  // PT_VULKAN_VALIDATION=1 (the ctest entry pt_gpu_tests_validation): any error the
+  // validation layer reported fails the run.
+  if (int errors = pt::gpu::validation_errors()) {
+    std::printf("the Vulkan validation layer reported %d error(s) (see stderr)\n", errors);
+    return failed ? failed : 1;
+  }
+  return failed;
 }

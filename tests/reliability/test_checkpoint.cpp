@@ -1,0 +1,167 @@
+// Checkpoint and resume (common/checkpoint.h), below the command line: a render resumed
+// from any pass's checkpoint equals the uninterrupted render bit for bit on the CPU (the
+// article's estimator is a sum of independent samples, each with its own random numbers);
+// the render key tells renders apart; damaged and truncated files are refused, never read.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "common/checkpoint.h"
+#include "common/error.h"
+#include "common/scene_loading.h"
+#include "stage1_raycast/kernels.h"
+#include "stage4_direct_indirect/kernels.h"
+#include "tests/support/test_render.h"
+
+namespace fs = std::filesystem;
+using namespace pt;
+
+namespace {
+
+fs::path scratch_file(const std::string& name) {
+  fs::path dir = fs::temp_directory_path() / ("pt_reliability_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+std::vector<char> read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+}
+
+void write_bytes(const fs::path& p, const std::vector<char>& bytes) {
+  std::ofstream(p, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// The error code load_checkpoint throws (0: it loaded).
+int load_code(const fs::path& p, std::uint64_t key, const char* stage, int w, int h, std::string* message = nullptr) {
+  try {
+    load_checkpoint(p.string(), key, stage, w, h);
+    return 0;
+  } catch (const Error& e) {
+    if (message) *message = e.what();
+    return e.code();
+  }
+}
+
+}  // namespace
+
+TEST_CASE("checkpoint: a render resumed from any pass equals the uninterrupted one bit for bit (CPU)",
+          "[reliability][checkpoint]") {
+  Scene scene = make_builtin_scene("cornell");
+  RenderSettings s = test::settings(20, 20, 40, test::test_seed(11));
+  s.sky = glm::vec3(0.1f);
+  RenderResult whole = test::render_on("cpu", stage4::kernels(), scene, s);
+
+  // The same render, saving its state after every pass.
+  std::vector<RenderResult> states;
+  RenderSettings saving = s;
+  saving.save_seconds = 0.0;
+  saving.save = [&](const RenderResult& r) { states.push_back(r); };
+  RenderResult again = test::render_on("cpu", stage4::kernels(), scene, saving);
+  CHECK(again.film.sums() == whole.film.sums());
+  REQUIRE(states.size() == 5);  // after 1, 3, 7, 15, 31 spp; never after the last (cut) pass
+
+  const std::uint64_t key = render_key("stage4_direct_indirect", scene, s);
+  for (const RenderResult& state : states) {
+    INFO("resumed from " << state.film.spp() << " spp");
+    fs::path file = scratch_file("resume.ckpt");
+    save_checkpoint(file.string(), key, "stage4_direct_indirect", state);
+    RenderResult loaded = load_checkpoint(file.string(), key, "stage4_direct_indirect", 20, 20);
+    CHECK(loaded.film.spp() == state.film.spp());
+    CHECK(loaded.passes == state.passes);
+    RenderSettings resuming = s;
+    resuming.resume = &loaded;
+    RenderResult resumed = test::render_on("cpu", stage4::kernels(), scene, resuming);
+    CHECK(resumed.film.spp() == 40);
+    CHECK(resumed.film.sums() == whole.film.sums());  // exact equality of every double
+    CHECK(resumed.counters.zero_pdf == whole.counters.zero_pdf);
+    CHECK(resumed.counters.depth_cap == whole.counters.depth_cap);
+  }
+}
+
+TEST_CASE("checkpoint: the render key changes with everything that determines the image", "[reliability][checkpoint]") {
+  Scene scene = make_builtin_scene("cornell");
+  RenderSettings s = test::settings(16, 12, 8, 3);
+  const std::uint64_t key = render_key("stage4_direct_indirect", scene, s);
+  CHECK(render_key("stage4_direct_indirect", scene, s) == key);
+  RenderSettings more = s;
+  more.spp = 1000;  // the sample count is what a resume changes
+  CHECK(render_key("stage4_direct_indirect", scene, more) == key);
+
+  CHECK(render_key("stage3_importance", scene, s) != key);
+  std::vector<RenderSettings> changed(7, s);
+  changed[0].seed = 4;
+  changed[1].width = 17;
+  changed[2].height = 13;
+  changed[3].sky = glm::vec3(0.0f, 0.0f, 1e-3f);
+  changed[4].roulette = s.roulette == kRouletteFixed ? kRouletteThroughput : kRouletteFixed;
+  changed[5].depth_cap = s.depth_cap - 1;
+  changed[6].all_features = true;
+  for (std::size_t i = 0; i < changed.size(); i++) {
+    INFO("change " << i);
+    CHECK(render_key("stage4_direct_indirect", scene, changed[i]) != key);
+  }
+  Scene moved = scene;
+  moved.triangles[0].p0.x += 1e-4f;
+  CHECK(render_key("stage4_direct_indirect", moved, s) != key);
+  Scene recoloured = scene;
+  recoloured.materials[0].base_color.y *= 0.5f;
+  CHECK(render_key("stage4_direct_indirect", recoloured, s) != key);
+}
+
+TEST_CASE("checkpoint: one of another render, a damaged or a truncated file is refused with exit 2",
+          "[reliability][checkpoint]") {
+  Scene scene = make_builtin_scene("cornell");
+  RenderSettings s = test::settings(8, 6, 7, 5);
+  std::vector<RenderResult> states;
+  s.save = [&](const RenderResult& r) { states.push_back(r); };
+  test::render_on("cpu", stage1::kernels(), scene, s);
+  REQUIRE(!states.empty());
+  const std::uint64_t key = render_key("stage1_raycast", scene, s);
+  fs::path good = scratch_file("good.ckpt"), bad = scratch_file("bad.ckpt");
+  save_checkpoint(good.string(), key, "stage1_raycast", states.back());
+  REQUIRE(load_code(good, key, "stage1_raycast", 8, 6) == 0);
+
+  std::string message;
+  CHECK(load_code(good, key + 1, "stage1_raycast", 8, 6, &message) == kExitBadOption);
+  CHECK(message.find("different render") != std::string::npos);
+  CHECK(load_code(good, key, "stage2_montecarlo", 8, 6, &message) == kExitBadOption);
+  CHECK(message.find("is of stage1_raycast") != std::string::npos);
+  CHECK(load_code(good, key, "stage1_raycast", 8, 7, &message) == kExitBadOption);
+  CHECK(message.find("8x6") != std::string::npos);
+  CHECK(load_code(scratch_file("none.ckpt"), key, "stage1_raycast", 8, 6, &message) == kExitBadOption);
+  CHECK(message.find("does not exist") != std::string::npos);
+
+  const std::vector<char> bytes = read_bytes(good);
+  // Every truncation.
+  for (std::size_t n = 0; n < bytes.size(); n++) {
+    write_bytes(bad, std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(n)));
+    INFO("truncated to " << n << " bytes");
+    REQUIRE(load_code(bad, key, "stage1_raycast", 8, 6) == kExitBadOption);
+  }
+  // A changed byte anywhere (its checksum, its header, its sums), and bytes appended.
+  std::mt19937 rng(1);
+  for (std::size_t i = 0; i < bytes.size(); i++) {
+    std::vector<char> damaged = bytes;
+    damaged[i] = char(damaged[i] ^ (1 + rng() % 255));
+    write_bytes(bad, damaged);
+    INFO("byte " << i << " changed");
+    REQUIRE(load_code(bad, key, "stage1_raycast", 8, 6, &message) == kExitBadOption);
+  }
+  std::vector<char> longer = bytes;
+  longer.push_back(0);
+  write_bytes(bad, longer);
+  CHECK(load_code(bad, key, "stage1_raycast", 8, 6) == kExitBadOption);
+  // Something else altogether.
+  write_bytes(bad, std::vector<char>(4096, 'x'));
+  CHECK(load_code(bad, key, "stage1_raycast", 8, 6, &message) == kExitBadOption);
+  CHECK(message.find("not a checkpoint") != std::string::npos);
+  fs::remove_all(good.parent_path());
+}

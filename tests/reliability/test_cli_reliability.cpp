@@ -1,0 +1,265 @@
+// The reliability of the stage programs as users run them (docs/reliability.md): resume
+// after Ctrl-C equals an uninterrupted render bit for bit; checkpoints of other renders
+// and damaged ones are refused with one line; each device failure (through PT_FAULT,
+// gpu/fault.h) ends with its message, exit 4 or a fallback to the CPU, and the samples
+// done written; image sizes the machine cannot hold are refused with the numbers.
+// Not part of the article: the machinery of the stage programs.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int code;
+  std::string err;
+  std::string out;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch() {
+  fs::path dir = fs::temp_directory_path() / ("pt_rel_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string path(const std::string& name) { return (scratch() / name).string(); }
+
+Run run(const std::string& args, const std::string& env = "") {
+  fs::path dir = scratch();
+  std::string cmd = env + " " PT_STAGE1_BIN " " + args + " >" + (dir / "stdout").string() + " 2>" +
+                    (dir / "stderr").string() + " </dev/null";
+  int status = std::system(cmd.c_str());
+  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stderr"), slurp(dir / "stdout")};
+}
+
+int lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+void check_error(const Run& r, int code, const std::string& words) {
+  INFO("stderr: " << r.err);
+  CHECK(r.code == code);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.rfind("stage1_raycast: ", 0) == 0);
+  CHECK(r.err.find(words) != std::string::npos);
+}
+
+struct Image {
+  std::vector<float> pixels;
+  std::uint64_t spp = 0;
+};
+
+Image read_image(const std::string& file) {
+  Image image;
+  auto in = OIIO::ImageInput::open(file);
+  if (!in) return image;
+  const OIIO::ImageSpec& spec = in->spec();
+  image.pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data());
+  image.spp = std::stoull(std::string(spec.get_string_attribute("pt:spp", "0")));
+  return image;
+}
+
+// Whether this machine has a Vulkan device (lavapipe counts); the device tests need one.
+bool have_vulkan_device() {
+  static int have = -1;
+  if (have < 0) have = run("--backend gpu --width 8 --height 8 --out " + path("probe.exr")).code == 0;
+  return have == 1;
+}
+
+// `args` run in a child, sent SIGINT after delay_ms; returns the exit code.
+int interrupted(const std::vector<std::string>& args, int delay_ms) {
+  std::string err = path("interrupted.stderr"), log = path("interrupted.stdout");
+  std::vector<char*> argv{const_cast<char*>(PT_STAGE1_BIN)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = ::fork();
+  if (pid == 0) {
+    std::freopen(err.c_str(), "w", stderr);
+    std::freopen(log.c_str(), "w", stdout);
+    ::execv(PT_STAGE1_BIN, argv.data());
+    ::_exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A small CPU render of stage1; `extra` may change its seed or size.
+std::string small(const std::string& extra = "--seed 9 --width 48") {
+  return "--backend cpu --threads 2 --height 40 " + extra + " ";
+}
+const std::string kSmall = small();
+
+}  // namespace
+
+TEST_CASE("cli: Ctrl-C with --checkpoint, then --resume, equals the uninterrupted render bit for bit",
+          "[reliability][checkpoint][interrupt]") {
+  const std::string whole = path("whole.exr");
+  Run r = run(kSmall + "--spp 3000 --out " + whole);
+  REQUIRE(r.code == 0);
+  Image expected = read_image(whole);
+  REQUIRE(expected.spp == 3000);
+
+  std::mt19937 rng(3);
+  // After start-up (a signal before the handlers are installed would kill it), and while
+  // the 3000 spp render (about 3 s here) is running.
+  std::uniform_int_distribution<int> delay(500, 1800);
+  int resumed_from_checkpoint = 0;
+  for (int i = 0; i < 2; i++) {
+    const std::string out = path("parted_" + std::to_string(i) + ".exr"), ckpt = out + ".ckpt";
+    fs::remove(ckpt);
+    int code = interrupted({"--backend", "cpu", "--threads", "2", "--width", "48", "--height", "40", "--seed", "9",
+                            "--spp", "3000", "--checkpoint", "0.05", "--out", out},
+                           delay(rng));
+    INFO("attempt " << i << ", exit " << code << ", stderr " << slurp(path("interrupted.stderr")));
+    REQUIRE((code == 130 || code == 0));  // 0: it ended before the signal
+    if (code == 0) {
+      CHECK(!fs::exists(ckpt));  // a finished render removes its checkpoint
+      continue;
+    }
+    REQUIRE(fs::exists(ckpt));
+    Image part = read_image(out);
+    CHECK(part.spp > 0);
+    CHECK(part.spp < 3000);
+    Run resumed = run(kSmall + "--spp 3000 --resume --out " + out);
+    INFO(resumed.err);
+    REQUIRE(resumed.code == 0);
+    Image image = read_image(out);
+    CHECK(image.spp == 3000);
+    CHECK(image.pixels == expected.pixels);  // every float of the image
+    CHECK(!fs::exists(ckpt));
+    resumed_from_checkpoint++;
+  }
+  CHECK(resumed_from_checkpoint > 0);
+}
+
+TEST_CASE("cli: --resume of another render, of a damaged or a missing checkpoint exits 2 with one line",
+          "[reliability][checkpoint]") {
+  const std::string out = path("other.exr"), ckpt = out + ".ckpt";
+  // A time budget far below the samples asked for leaves the checkpoint behind.
+  Run r = run(kSmall + "--spp 4000000 --time-budget 0.3 --checkpoint 0.01 --out " + out);
+  REQUIRE(r.code == 0);
+  REQUIRE(fs::exists(ckpt));
+  const std::string saved = slurp(ckpt);
+  check_error(run(small("--seed 10 --width 48") + "--spp 4000000 --resume --out " + out), 2, "different render");
+  check_error(run(kSmall + "--sky 1,1,1 --spp 4000000 --resume --out " + out), 2, "different render");
+  check_error(run(kSmall + "--all-features --spp 4000000 --resume --out " + out), 2, "different render");
+  check_error(run(small("--seed 9 --width 47") + "--spp 4000000 --resume --out " + out), 2, "48x40");
+  check_error(run(kSmall + "--spp 1 --resume --out " + out), 2, "more than --spp 1");
+  check_error(run(kSmall + "--spp 10 --resume " + path("nothing.ckpt") + " --out " + out), 2, "does not exist");
+  std::ofstream(ckpt, std::ios::binary) << saved.substr(0, saved.size() / 2);
+  check_error(run(kSmall + "--spp 4000000 --resume --out " + out), 2, "truncated");
+  std::string flipped = saved;
+  flipped[saved.size() / 2] ^= 0x10;
+  std::ofstream(ckpt, std::ios::binary) << flipped;
+  check_error(run(kSmall + "--spp 4000000 --resume --out " + out), 2, "damaged");
+  // The refused checkpoint is left as it was, for the user to look at.
+  CHECK(slurp(ckpt) == flipped);
+  // The right options resume it (from the other path, with --resume PATH).
+  const std::string copy = path("copy.ckpt");
+  std::ofstream(copy, std::ios::binary) << saved;
+  Run resumed = run(kSmall + "--spp 4000000 --time-budget 0.2 --resume " + copy + " --out " + out);
+  INFO(resumed.err);
+  CHECK(resumed.code == 0);
+}
+
+TEST_CASE("cli: a missing loader or no device: gpu exits 4 with one line, auto falls back to the CPU",
+          "[reliability][devices]") {
+  for (const char* fault : {"PT_FAULT=no_loader", "PT_FAULT=no_device"}) {
+    INFO(fault);
+    const std::string words = std::string(fault).find("loader") != std::string::npos ? "no Vulkan loader" : "no Vulkan device";
+    check_error(run("--backend gpu --width 8 --height 8 --out " + path("gpu.png"), fault), 4, words);
+    Run r = run("--backend auto --width 8 --height 8 --out " + path("auto.png"), fault);
+    INFO(r.err);
+    CHECK(r.code == 0);
+    CHECK(r.err.find(words) != std::string::npos);
+    CHECK(r.err.find("falls back to the CPU") != std::string::npos);
+    CHECK(r.out.find("backend cpu") != std::string::npos);
+  }
+  check_error(run("--backend gpu --width 8 --height 8 --out " + path("gpu.png"), "PT_FAULT=bogus"), 2, "PT_FAULT");
+}
+
+TEST_CASE("cli: a device whose limits cannot hold the image is refused before allocating, with the numbers",
+          "[reliability][devices]") {
+  if (!have_vulkan_device()) SUCCEED("no Vulkan device here: nothing to test");
+  if (!have_vulkan_device()) return;
+  // 128 x 128 x 16 bytes = 262144 bytes of pass output; small_limits allows 65536.
+  Run r = run("--backend gpu --width 128 --height 128 --out " + path("big.png"), "PT_FAULT=small_limits");
+  check_error(r, 4, "262144 bytes");
+  CHECK(r.err.find("65536 bytes") != std::string::npos);
+  CHECK(!fs::exists(path("big.png")));
+  r = run("--backend auto --width 128 --height 128 --out " + path("big.png"), "PT_FAULT=small_limits");
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.err.find("falls back to the CPU") != std::string::npos);
+  CHECK(read_image(path("big.png")).spp == 1);
+  // An image within the limits renders on the device.
+  r = run("--backend gpu --width 16 --height 16 --out " + path("small.png"), "PT_FAULT=small_limits");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("backend gpu") != std::string::npos);
+}
+
+TEST_CASE("cli: a device lost mid-render is not retried: gpu writes the samples done and exits 4, auto finishes "
+          "on the CPU",
+          "[reliability][devices]") {
+  if (!have_vulkan_device()) SUCCEED("no Vulkan device here: nothing to test");
+  if (!have_vulkan_device()) return;
+  // Passes of 1, 2, 4, ... samples: the device is lost in pass 3, after 1 + 2 spp.
+  const std::string gpu_out = path("lost.exr");
+  Run r = run("--backend gpu --width 16 --height 16 --spp 64 --out " + gpu_out, "PT_FAULT=device_lost:pass=3");
+  check_error(r, 4, "VK_ERROR_DEVICE_LOST");
+  CHECK(r.err.find("not retried") != std::string::npos);
+  CHECK(r.err.find("the 3 spp done are in") != std::string::npos);
+  CHECK(read_image(gpu_out).spp == 3);
+  // Lost in the first pass: nothing to write, and an older file stays as it was.
+  std::ofstream(gpu_out) << "old";
+  r = run("--backend gpu --width 16 --height 16 --spp 64 --out " + gpu_out, "PT_FAULT=device_lost:pass=1");
+  check_error(r, 4, "nothing was rendered");
+  CHECK(slurp(gpu_out) == "old");
+  // auto: the CPU goes on from the samples done, to the spp asked for.
+  const std::string auto_out = path("lost_auto.exr");
+  r = run("--backend auto --width 16 --height 16 --spp 64 --out " + auto_out, "PT_FAULT=device_lost:pass=3");
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.err.find("falls back to the CPU and goes on from the 3 spp done") != std::string::npos);
+  CHECK(read_image(auto_out).spp == 64);
+  CHECK(r.out.find("64 spp") != std::string::npos);
+}
+
+TEST_CASE("cli: an image larger than the machine can hold is refused with the numbers, exit 2",
+          "[reliability][bounds]") {
+  // 2^32 pixels: past what one image may have.
+  check_error(run("--backend cpu --width 65536 --height 65536 --out " + path("huge.png")), 2, "65536x65536");
+  // 40000 x 40000 pixels need about 96 GB of film and buffers: more than a test machine has.
+  Run r = run("--backend cpu --width 40000 --height 40000 --out " + path("huge.png"));
+  check_error(r, 2, "GB");
+  CHECK(r.err.find("40000x40000") != std::string::npos);
+}
