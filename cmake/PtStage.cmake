@@ -10,6 +10,9 @@ function(pt_add_stage DIR)
   if(NOT DEFINED ARG_CPU_GROUPS)
     set(ARG_CPU_GROUPS 0)
   endif()
+  if(PT_CPU_GENERAL_ONLY)  # cmake/Labs.cmake: the lab check build compiles one variant
+    set(ARG_CPU_GROUPS 0)
+  endif()
   string(REGEX MATCH "^stage[0-9]+" ns ${DIR})  # the stage's C++ namespace, e.g. stage4
   pt_embed_shader(${DIR} ${CMAKE_CURRENT_SOURCE_DIR}/kernel.comp)
 
