@@ -4,10 +4,10 @@
 function(pt_embed_shader NAME SOURCE)
   set(header ${CMAKE_CURRENT_BINARY_DIR}/${NAME}_spirv.h)
   file(GLOB_RECURSE deps CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/common/shaders/*
-       ${CMAKE_CURRENT_SOURCE_DIR}/*.glsl)
+       ${CMAKE_CURRENT_SOURCE_DIR}/*.glsl ${PROJECT_SOURCE_DIR}/labs/*.glsl)
   add_custom_command(
     OUTPUT ${header}
-    COMMAND ${GLSLANG_VALIDATOR} --quiet -V --target-env vulkan1.1 -I${PROJECT_SOURCE_DIR}
+    COMMAND ${GLSLANG_VALIDATOR} --quiet -V --target-env vulkan1.1 -I${PROJECT_SOURCE_DIR} -DPT_LAB=${PT_LAB}
             --vn ${NAME}_spirv -o ${header} ${SOURCE}
     DEPENDS ${SOURCE} ${deps}
     COMMENT "Compiling ${NAME} to SPIR-V"

@@ -7,7 +7,9 @@
 # table and the point lights (stage4's light sampling), so they are uploaded.
 function(pt_add_stage DIR)
   cmake_parse_arguments(ARG "USES_LIGHT_TABLE" "CPU_GROUPS" "" ${ARGN})
-  if(NOT DEFINED ARG_CPU_GROUPS OR PT_GENERAL_KERNELS_ONLY)
+  # PT_CPU_GENERAL_ONLY (cmake/Labs.cmake): one general CPU kernel per stage, for the
+  # sanitizer and lab-check builds; the images are the same (tests/common/test_specialised.cpp).
+  if(NOT DEFINED ARG_CPU_GROUPS OR PT_CPU_GENERAL_ONLY)
     set(ARG_CPU_GROUPS 0)
   endif()
   string(REGEX MATCH "^stage[0-9]+" ns ${DIR})  # the stage's C++ namespace, e.g. stage4

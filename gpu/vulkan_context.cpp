@@ -88,6 +88,7 @@ void VulkanContext::create(const std::string& device_request) {
   if (fault().no_loader || volkInitialize() != VK_SUCCESS) {
     throw Error(kExitNoDevice, std::string("no Vulkan loader (libvulkan.so.1) on this machine; ") + kNoVulkanHint);
   }
+  // [excerpt instance] (docs/vulkan_backend.md)
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "staged path tracer";
   app.apiVersion = VK_API_VERSION_1_1;
@@ -123,6 +124,7 @@ void VulkanContext::create(const std::string& device_request) {
   check(r, "creating an instance");
   volkLoadInstance(instance_);
   if (validate) check(vkCreateDebugUtilsMessengerEXT(instance_, &messenger, nullptr, &messenger_), "creating the validation messenger");
+  // [/excerpt]
 
   uint32_t count = 0;
   check(vkEnumeratePhysicalDevices(instance_, &count, nullptr), "listing devices");
@@ -133,6 +135,7 @@ void VulkanContext::create(const std::string& device_request) {
     throw Error(kExitNoDevice, std::string("no Vulkan device found; ") + kNoVulkanHint);
   }
 
+  // [excerpt choose_device] (docs/vulkan_backend.md)
   // Choose: the request (index or name) if any, else the best type.
   std::string request = device_request;
   if (request.empty() && std::getenv("PT_VULKAN_DEVICE")) request = std::getenv("PT_VULKAN_DEVICE");
@@ -150,6 +153,7 @@ void VulkanContext::create(const std::string& device_request) {
     throw Error(kExitNoDevice, "no Vulkan device matches '" + request + "'; the devices are " + listing);
   }
   physical_ = devices[best];
+  // [/excerpt]
   // The largest heap that host-visible memory (which the buffers use) comes from.
   VkPhysicalDeviceMemoryProperties mem;
   vkGetPhysicalDeviceMemoryProperties(physical_, &mem);
@@ -163,6 +167,7 @@ void VulkanContext::create(const std::string& device_request) {
     heap_size_ = kFaultHeapSize;
   }
 
+  // [excerpt device_queue] (docs/vulkan_backend.md)
   // One queue family that can compute.
   uint32_t families = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, nullptr);
@@ -188,6 +193,7 @@ void VulkanContext::create(const std::string& device_request) {
   check(vkCreateDevice(physical_, &device_info, nullptr, &device_), "creating the device");
   volkLoadDevice(device_);
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+  // [/excerpt]
 
   VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

@@ -7,9 +7,12 @@
 #include "common/shaders/rng.glsl"
 #include "common/shaders/camera.glsl"
 #include "common/shaders/intersect.glsl"
+#include "common/shaders/lab.glsl"
+#include "labs/lab1.glsl"
 
 // Eq. (2): the radiance leaving the first surface towards the camera is its own.
 vec3 Li(Ray ray) {
+  PT_LAB_HOOK(1, lab1_Li(ray));  // lab 1 (docs/labs/lab1.md): the student's version
   Hit hit = intersect_scene(ray, kInfinity);
   if (hit.kind == kPrimNone) return vec3(params.sky);
   Surface surface = surface_at(ray, hit);

@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "common/shaders/lab_hooks.h"  // the labs' stubs (docs/labs)
 #include "common/shaders/scene_types.h"
 
 namespace pt::glsl {

@@ -30,8 +30,12 @@ uint pick_light(float u) {
   return lo;
 }
 
+#include "common/shaders/lab.glsl"
+#include "labs/lab4.glsl"
+
 // A point uniform on the triangle: density 1 / area (Turk's square-root mapping).
 LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
+  PT_LAB_HOOK(4, lab4_sample_triangle_light(index, p, u, pick));  // lab 4 (docs/labs/lab4.md)
   Triangle tri = triangles[index];
   vec3 p0 = vec3(tri.p0);
   vec3 p1 = vec3(tri.p1);

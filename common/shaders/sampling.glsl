@@ -6,6 +6,10 @@
 
 const float kPi = 3.14159265358979f;
 
+#include "common/shaders/lab.glsl"
+#include "labs/lab2.glsl"
+#include "labs/lab3.glsl"
+
 // An orthonormal basis around a unit normal, without branches on the normal's direction
 // except its sign (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
 struct Frame {
@@ -31,6 +35,7 @@ vec3 frame_to_local(Frame f, vec3 v) {
 
 // Uniform over the hemisphere z > 0: cos(theta) = u.x, phi = 2 pi u.y; pdf 1 / (2 pi).
 vec3 sample_uniform_hemisphere(vec2 u) {
+  PT_LAB_HOOK(2, lab2_sample_uniform_hemisphere(u));  // lab 2 (docs/labs/lab2.md)
   float z = u.x;
   float r = sqrt(max(0.0f, 1.0f - z * z));
   float phi = 2.0f * kPi * u.y;
@@ -38,6 +43,7 @@ vec3 sample_uniform_hemisphere(vec2 u) {
 }
 
 float uniform_hemisphere_pdf() {
+  PT_LAB_HOOK(2, lab2_uniform_hemisphere_pdf());
   return 1.0f / (2.0f * kPi);
 }
 
@@ -50,12 +56,14 @@ vec2 invert_uniform_hemisphere(vec3 w) {
 // Cosine-weighted over the hemisphere z > 0 (Malley's method: uniform on the disk, lifted
 // up): pdf cos(theta) / pi, the diffuse lobe's own shape (stage3, Eq. 4).
 vec3 sample_cosine_hemisphere(vec2 u) {
+  PT_LAB_HOOK(3, lab3_sample_cosine_hemisphere(u));  // lab 3 (docs/labs/lab3.md)
   float r = sqrt(u.x);
   float phi = 2.0f * kPi * u.y;
   return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0f, 1.0f - u.x)));
 }
 
 float cosine_hemisphere_pdf(float cos_theta) {
+  PT_LAB_HOOK(3, lab3_cosine_hemisphere_pdf(cos_theta));
   return max(cos_theta, 0.0f) * (1.0f / kPi);
 }
 

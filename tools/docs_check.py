@@ -1,0 +1,297 @@
+#!/usr/bin/env python3
+"""Keeps the book (README.md and docs/, the chapters beside the article's Eq. 1-5) true to
+the code, so the docs cannot drift from what the program computes.
+
+Three things are checked in every Markdown file:
+
+1. Code excerpts. A line
+       <!-- excerpt: PATH#NAME -->
+   followed by a fenced code block means: the block is the code of NAME in PATH (relative to
+   the repository root). NAME is either a marked region of the source,
+       // [excerpt NAME]   ...   // [/excerpt]      (any comment leader: //, #)
+   or, without such markers, the function (or struct) definition named NAME: the line
+   `Type NAME(` (or `Class::NAME(`), the comment lines just above it, and everything down
+   to the `}` at the definition's indentation.
+2. Line references. A link  [`SYMBOL`:N](REL/PATH#LN)  says that SYMBOL is defined at line N
+   of the file; both numbers must be the line of SYMBOL's definition (see find_symbol).
+3. Images and relative links: every ![..](x), <img src="x"> and [..](x) that is not a URL
+   must name a file or folder that exists.
+
+  tools/docs_check.py --check    (the ctest entry docs_check) lists every drifted excerpt,
+                                 wrong line and missing file, one per line; exit 1 if any
+  tools/docs_check.py --update   rewrites excerpts and line numbers from the source
+                                 (missing files cannot be fixed this way and are listed)
+  --root DIR                     the repository to check (default: this script's parent)
+"""
+import argparse
+import os
+import re
+import sys
+
+FENCE = re.compile(r"^(```+|~~~+)")
+EXCERPT = re.compile(r"^<!-- excerpt: ([^#\s]+)#([A-Za-z_][\w:]*) -->\s*$")
+LINE_REF = re.compile(r"\[`([A-Za-z_][\w:]*)`:(\d+)\]\(([^)\s#]+)#L(\d+)\)")
+LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
+IMG_TAG = re.compile(r"<img\s[^>]*src=\"([^\"]+)\"")
+LANG = {".glsl": "glsl", ".comp": "glsl", ".cpp": "cpp", ".h": "cpp", ".py": "python",
+        ".cmake": "cmake", ".txt": "cmake", ".sh": "sh"}
+# Files that other parts of the project write and that may not exist on every branch yet:
+# a link to one of them that is missing is reported as a warning, not an error.
+PENDING = {"docs/results.md", "docs/stability.md", "docs/reliability.md"}
+
+
+class Problems:
+    def __init__(self):
+        self.errors = []
+        self.warnings = []
+
+
+def markdown_files(root):
+    files = [os.path.join(root, "README.md")]
+    for base, dirs, names in os.walk(os.path.join(root, "docs")):
+        dirs.sort()
+        files += [os.path.join(base, n) for n in sorted(names) if n.endswith(".md")]
+    return [f for f in files if os.path.isfile(f)]
+
+
+def read_lines(path):
+    with open(path, encoding="utf-8") as f:
+        return f.read().split("\n")
+
+
+def dedent(lines):
+    indents = [len(l) - len(l.lstrip(" ")) for l in lines if l.strip()]
+    cut = min(indents) if indents else 0
+    return [l[cut:].rstrip() for l in lines]
+
+
+def marked_region(lines, name):
+    """(first line index, lines) of the region between [excerpt name] and [/excerpt]."""
+    start = None
+    for i, line in enumerate(lines):
+        if re.search(r"\[excerpt " + re.escape(name) + r"\]", line):
+            start = i + 1
+        elif start is not None and "[/excerpt]" in line:
+            return start, lines[start:i]
+    return None
+
+
+NOT_TYPES = {"return", "else", "case", "new", "delete", "throw", "if", "while", "for", "switch", "co_return"}
+
+
+def definition_line(lines, name):
+    """Index of the definition of function or struct `name`: a line `Type name(` (any
+    indentation; at column 0 the type may be absent, as for Class::Class) or `struct name`,
+    which is not a statement (does not end with ';')."""
+    n = re.escape(name)
+    func = re.compile(r"^(\s*)((?:[\w:<>*&,]+\s+)*)(?:[\w<>]+::)*" + n + r"\s*\(")
+    struct = re.compile(r"^\s*(struct|class)\s+" + n + r"\b(?!.*;\s*$)")
+    for i, line in enumerate(lines):
+        stripped = line.strip()
+        if not stripped or stripped.startswith(("//", "#", "*", "/*")) or stripped.endswith(";"):
+            continue
+        if struct.search(line):
+            return i
+        m = func.match(line)
+        if not m:
+            continue
+        types = m.group(2).split()
+        if any(t in NOT_TYPES for t in types):
+            continue
+        if types or m.group(1) == "":
+            return i
+    return None
+
+
+def block_end(lines, i):
+    """Index of the line closing the block that starts at line i: the first later line
+    that is the definition's indentation followed by '}' (or the same line if it closes)."""
+    indent = lines[i][:len(lines[i]) - len(lines[i].lstrip())]
+    if lines[i].rstrip().endswith("}"):
+        return i
+    for j in range(i + 1, len(lines)):
+        if lines[j].startswith(indent + "}"):
+            return j
+    return None
+
+
+def find_symbol(lines, name):
+    """The line index where `name` is defined: a marked excerpt, a function or struct, a #define, a constant, or else the first declaration `Type name =|;|(`."""
+    region = marked_region(lines, name)
+    if region:
+        return region[0]
+    i = definition_line(lines, name)
+    if i is not None:
+        return i
+    n = re.escape(name)
+    patterns = [r"^\s*#\s*define\s+" + n + r"\b",
+                r"^\s*(static\s+)?(inline\s+)?(const|constexpr)\s+[\w:<>]+\s+" + n + r"\b",
+                r"^\s*[\w:<>]+\s+" + n + r"\s*(=|;|\(|\{)"]
+    for p in patterns:
+        rx = re.compile(p)
+        for i, line in enumerate(lines):
+            if rx.search(line):
+                return i
+    return None
+
+
+def excerpt_text(root, path, name):
+    """The lines of excerpt `name` of `path`, or an error string."""
+    full = os.path.join(root, path)
+    if not os.path.isfile(full):
+        return None, f"{path} does not exist"
+    lines = read_lines(full)
+    region = marked_region(lines, name)
+    if region:
+        return dedent(region[1]), None
+    i = definition_line(lines, name)
+    if i is None:
+        return None, f"{path} has no '[excerpt {name}]' marker and no top-level definition of {name}"
+    # Back up over the comment lines just above the definition.
+    indent = lines[i][:len(lines[i]) - len(lines[i].lstrip())]
+    start = i
+    while start > 0 and lines[start - 1].startswith(indent + "//"):
+        start -= 1
+    end = block_end(lines, i)
+    if end is None:
+        return None, f"{path}: the definition of {name} at line {i + 1} has no closing '}}'"
+    return dedent(lines[start:end + 1]), None
+
+
+def check_excerpts(root, md, lines, update, problems):
+    rel = os.path.relpath(md, root)
+    out = []
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        out.append(line)
+        m = EXCERPT.match(line)
+        if not m:
+            i += 1
+            continue
+        path, name = m.group(1), m.group(2)
+        code, error = excerpt_text(root, path, name)
+        fence_at = i + 1
+        if fence_at >= len(lines) or not FENCE.match(lines[fence_at]):
+            problems.errors.append(f"{rel}:{i + 1}: excerpt {path}#{name} is not followed by a ``` code block")
+            i += 1
+            continue
+        end = fence_at + 1
+        while end < len(lines) and not lines[end].startswith(FENCE.match(lines[fence_at]).group(1)):
+            end += 1
+        if end >= len(lines):
+            problems.errors.append(f"{rel}:{fence_at + 1}: the code block of excerpt {path}#{name} is not closed")
+            return lines
+        if error:
+            problems.errors.append(f"{rel}:{i + 1}: excerpt {path}#{name}: {error}")
+            out += lines[fence_at:end + 1]
+        else:
+            current = lines[fence_at + 1:end]
+            if current != code:
+                if update:
+                    problems.warnings.append(f"{rel}:{i + 1}: excerpt {path}#{name} updated")
+                else:
+                    problems.errors.append(f"{rel}:{i + 1}: excerpt {path}#{name} differs from the source "
+                                           f"(run tools/docs_check.py --update)")
+            lang = LANG.get(os.path.splitext(path)[1], "")
+            out.append("```" + lang)
+            out += code if update else current
+            out.append("```")
+        i = end + 1
+    return out
+
+
+def check_line_refs(root, md, lines, update, problems):
+    rel = os.path.relpath(md, root)
+    base = os.path.dirname(md)
+    cache = {}
+
+    def fix(m, lineno):
+        symbol, shown, target, anchor = m.group(1), int(m.group(2)), m.group(3), int(m.group(4))
+        path = os.path.normpath(os.path.join(base, target))
+        where = os.path.relpath(path, root)
+        if not os.path.isfile(path):
+            problems.errors.append(f"{rel}:{lineno}: {where} (line reference of {symbol}) does not exist")
+            return m.group(0)
+        if path not in cache:
+            cache[path] = read_lines(path)
+        i = find_symbol(cache[path], symbol)
+        if i is None:
+            problems.errors.append(f"{rel}:{lineno}: {symbol} is not defined in {where}")
+            return m.group(0)
+        if shown == i + 1 and anchor == i + 1:
+            return m.group(0)
+        if update:
+            problems.warnings.append(f"{rel}:{lineno}: {symbol} in {where}: line {shown} -> {i + 1}")
+            return f"[`{symbol}`:{i + 1}]({target}#L{i + 1})"
+        problems.errors.append(f"{rel}:{lineno}: {symbol} is at {where}:{i + 1}, the docs say {shown}"
+                               f"{'' if shown == anchor else f' and link to line {anchor}'}"
+                               f" (run tools/docs_check.py --update)")
+        return m.group(0)
+
+    return [LINE_REF.sub(lambda m, n=n: fix(m, n), line) for n, line in enumerate(lines, 1)]
+
+
+def check_links(root, md, lines, problems):
+    rel = os.path.relpath(md, root)
+    base = os.path.dirname(md)
+    in_code = False
+    for n, line in enumerate(lines, 1):
+        if FENCE.match(line):
+            in_code = not in_code
+            continue
+        if in_code:
+            continue
+        for target in LINK.findall(line) + IMG_TAG.findall(line):
+            if re.match(r"^[a-z][a-z0-9+.-]*:", target) or target.startswith("#"):
+                continue
+            path = target.split("#")[0]
+            full = os.path.normpath(os.path.join(base, path))
+            if os.path.exists(full):
+                continue
+            where = os.path.relpath(full, root)
+            if where in PENDING:
+                problems.warnings.append(f"{rel}:{n}: {where} does not exist yet (written by another part of the project)")
+            else:
+                problems.errors.append(f"{rel}:{n}: link or image {target} -> {where} does not exist")
+
+
+def run(root, update):
+    problems = Problems()
+    for md in markdown_files(root):
+        lines = read_lines(md)
+        new = check_excerpts(root, md, lines, update, problems)
+        new = check_line_refs(root, md, new, update, problems)
+        check_links(root, md, new, problems)
+        if update and new != lines:
+            with open(md, "w", encoding="utf-8") as f:
+                f.write("\n".join(new))
+    return problems
+
+
+def main():
+    parser = argparse.ArgumentParser(description="Check (or update) the code excerpts, line references "
+                                                 "and links of README.md and docs/.")
+    mode = parser.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--check", action="store_true", help="report drift; exit 1 if any")
+    mode.add_argument("--update", action="store_true", help="rewrite excerpts and line numbers from the source")
+    parser.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                        help="the repository root (default: the parent of tools/)")
+    args = parser.parse_args()
+    if not os.path.isfile(os.path.join(args.root, "README.md")):
+        print(f"docs_check: {args.root} has no README.md: give the repository root with --root", file=sys.stderr)
+        return 2
+    problems = run(args.root, args.update)
+    for w in problems.warnings:
+        print("note: " + w)
+    for e in problems.errors:
+        print("error: " + e, file=sys.stderr)
+    if problems.errors:
+        print(f"docs_check: {len(problems.errors)} problem(s)", file=sys.stderr)
+        return 1
+    print("docs_check: excerpts, line references and links agree with the source")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
