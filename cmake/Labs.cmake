@@ -4,7 +4,7 @@
 #                          (stubs that fail loudly until written), on both backends.
 #   -DPT_LAB_CHECK=ON      the CI's check build: the stub of lab $PT_LAB_STUB is chosen at run
 #                          time on the CPU, so one build shows every lab's tests failing
-#                          (tools/lab_check.sh). Use with PT_CPU_GENERAL_ONLY and build only
+#                          (tools/expect_lab_failure.sh). Use with PT_CPU_GENERAL_ONLY and build only
 #                          pt_tests.
 #   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once (all features) instead of
 #                          once per feature variant: a faster build (the sanitizer and
