@@ -57,6 +57,11 @@ struct FloorLightScene {
   bool triangle = false;               // a triangle emitter: the square's half (-a,-a) (a,-a) (a,a)
 };
 
+// builtin:floor_small_light and builtin:floor_large_light: FloorLightScene with the
+// emitter's half-size set to these, its radiance scaled to keep the power.
+constexpr float kSmallLightHalf = 0.1f;
+constexpr float kLargeLightHalf = 2.0f;
+
 // builtin:point_floor — the floor of FloorLightScene under a point light of intensity I
 // at the emitter's height: radiance albedo I cos(theta) / (pi d^2). Only stage4 sees it.
 struct PointFloorScene {

@@ -9,6 +9,7 @@
 namespace pt {
 
 Bounds Scene::bounds() const {
+  if (region) return *region;
   Bounds b;
   for (const Triangle& t : triangles) {
     b.extend(glm::vec3(t.p0)), b.extend(glm::vec3(t.p1)), b.extend(glm::vec3(t.p2));

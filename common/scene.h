@@ -37,8 +37,12 @@ struct Scene {
   double light_power = 0.0;              // the table's total power (luminance), same place
   std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
   int degenerate_triangles = 0;          // skipped at load (zero area or not finite)
+  std::optional<Bounds> region;          // where the scene's content is, when its shapes'
+                                         // bounds overstate it (smallpt's walls are spheres
+                                         // of radius 1e5): bounds() returns it, so the
+                                         // spawn offset and framing use the room's size
 
-  Bounds bounds() const;
+  Bounds bounds() const;  // `region` when set, else the shapes' bounds
   // Appends a material and returns its index.
   uint add_material(const Material& m);
   void add_triangle(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, uint material);

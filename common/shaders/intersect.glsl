@@ -76,23 +76,34 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   return Hit(t, v * inv_det, w * inv_det, index, kPrimTriangle);
 }
 
+// Rounding error of a sphere root, in units of the numbers it was computed from: a few
+// float epsilons for the rounding of f = origin - centre, of the origin itself (the last
+// hit's rounding) and of the products below.
+const float kSphereRootError = 1e-6f;
+
 // Returns a hit with sphere `index` if it is nearer than `best`, else `best`.
+// Both differences of squares are taken as (x - r)(x + r) of lengths, not x^2 - r^2: with
+// smallpt's walls (radius 1e5) x^2 and r^2 are 1e10, where a float's step is 1024, while
+// x - r keeps the step of x (1/128). A root is taken only beyond its own error bound (as
+// pbrt does with interval arithmetic): a ray leaving a wall of radius 1e5 finds that wall
+// again within a few hundredths of a unit, which the spawn offset cannot step over.
 Hit hit_sphere(Ray ray, uint index, Hit best) {
   vec3 center = vec3(spheres[index].center_radius);
   float radius = spheres[index].center_radius.w;
   vec3 f = ray.origin - center;
   float b = -dot(f, ray.dir);
-  vec3 l = f + b * ray.dir;  // from the centre to the ray's closest point
-  float disc = radius * radius - dot(l, l);
+  float l = length(f + b * ray.dir);  // from the centre to the ray's closest point
+  float disc = (radius - l) * (radius + l);
   if (disc < 0.0f) return best;
-  float c = dot(f, f) - radius * radius;
-  float q = b + (b >= 0.0f ? sqrt(disc) : -sqrt(disc));
-  float t0 = q != 0.0f ? c / q : 0.0f;
-  float t1 = q;
-  float near_t = min(t0, t1);
-  float far_t = max(t0, t1);
-  float t = near_t > 0.0f ? near_t : far_t;
-  if (t <= 0.0f || t >= best.t) return best;
+  float fl = length(f);
+  float c = (fl - radius) * (fl + radius);
+  float q = b + (b >= 0.0f ? sqrt(disc) : -sqrt(disc));  // the root of larger magnitude
+  if (q == 0.0f) return best;  // the origin at the centre of a sphere of radius 0
+  float t_small = c / q;       // the other root, by Vieta's formula
+  float t = kInfinity;
+  if (q > kSphereRootError * (fl + radius)) t = q;
+  if (t_small > kSphereRootError * (fl * fl + radius * radius) / abs(q)) t = min(t, t_small);
+  if (t >= best.t) return best;
   return Hit(t, 0.0f, 0.0f, index, kPrimSphere);
 }
 

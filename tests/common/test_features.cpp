@@ -16,6 +16,13 @@ TEST_CASE("features: built-in and shipped scenes report what they use", "[featur
   CHECK(scene_features(make_builtin_scene("furnace_sphere"), glm::vec3(0.0f)) == "spheres; diffuse; emissive spheres");
   CHECK(scene_features(load_scene(PT_SOURCE_DIR "/scenes/glossy_glass.gltf"), glm::vec3(0.0f)) ==
         "triangles; diffuse, GGX conductor, glass; emissive triangles, point lights");
+  // The benchmark's scenes (bench/runs.txt), and the one with every feature.
+  CHECK(scene_features(make_builtin_scene("cornell_glossy"), glm::vec3(0.0f)) == "triangles; diffuse, GGX conductor; emissive triangles");
+  CHECK(scene_features(make_builtin_scene("cornell_glass"), glm::vec3(0.0f)) == "triangles, spheres; diffuse, glass; emissive triangles");
+  CHECK(scene_features(make_builtin_scene("smallpt"), glm::vec3(0.0f)) == "spheres; diffuse, mirror, glass; emissive spheres");
+  CHECK(scene_features(make_builtin_scene("floor_small_light"), glm::vec3(0.0f)) == "triangles; diffuse; emissive triangles");
+  CHECK(scene_features(make_builtin_scene("floor_large_light"), glm::vec3(0.0f)) == "triangles; diffuse; emissive triangles");
+  CHECK(scene_feature_mask(make_builtin_scene("every_feature"), glm::vec3(0.1f)) == kFeatureAll);
   Scene empty;
   CHECK(scene_features(empty, glm::vec3(0.0f)) == "none; none; none");
 }

@@ -1,0 +1,66 @@
+// pt_bench, the speed-versus-accuracy lab (issue 6): what its sections share. The article's
+// stages differ in their estimator (Eq. 3 uniform sampling, importance sampling, direct +
+// indirect light); the bench measures what each costs and gives, per scene and backend.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/backend.h"
+#include "common/render.h"
+#include "common/scene.h"
+
+namespace pt::bench {
+
+struct Config {
+  int size = 64;                     // images are size x size
+  double seconds = 4.0;              // per run of the error study: the last checkpoint starts before this
+  double reference_seconds = 60.0;   // a cached reference renders this long (stage4, CPU)
+  std::string cache_dir = "build/bench_cache";
+  std::string out_dir = "docs/results";
+  std::uint32_t seed = 1;
+};
+
+// One line of the run list: a scene, a stage, a backend.
+struct Run {
+  std::string scene;    // builtin NAME or a glTF path
+  std::string stage;    // stage1_raycast ... stage4_direct_indirect
+  std::string backend;  // cpu or gpu
+};
+
+// The stage's kernels by program name or by its number ("2"); throws Error(2) if unknown.
+StageKernels stage_kernels(const std::string& stage);
+std::string stage_name(const std::string& stage);
+
+// One backend per (stage, kind), made on first use: the GPU keeps its pipelines.
+Backend& backend_for(const std::string& stage, const std::string& kind);
+
+// builtin:NAME for a bare name, the path otherwise.
+Scene load_bench_scene(const std::string& scene);
+
+// The scene's true image (linear RGB, row-major from the top) and where it came from:
+// the closed form for the analytic scenes, else a converged render cached on disk.
+struct Reference {
+  std::vector<float> rgb;
+  std::string source;            // "closed form" or "stage4 cpu, N spp"
+  double relative_error = 0.0;   // the reference's own estimated relative RMSE per pixel
+};
+Reference reference_image(const std::string& scene, const Config& config);
+
+// Error of an image against the reference, by OpenImageIO's ImageBufAlgo::compare.
+struct ErrorMetrics {
+  double rmse = 0.0;      // over pixels and channels
+  double relative = 0.0;  // rmse / mean of the reference
+};
+ErrorMetrics compare_images(const std::vector<float>& image, const Reference& reference, int size);
+
+// The sections; each writes a CSV into config.out_dir and a short table on stdout.
+void run_error_study(const std::vector<Run>& runs, const Config& config);
+void run_speed(const Config& config);
+void run_specialisation(const std::vector<std::string>& stages, const std::vector<std::string>& backends,
+                        const Config& config);
+
+}  // namespace pt::bench

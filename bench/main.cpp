@@ -1,0 +1,124 @@
+// pt_bench: the speed-versus-accuracy lab (issue 6) and the measured gain of specialised
+// kernels (issue 8). Sections: `error` (error against time per scene x stage x backend,
+// docs/results/convergence.csv), `speed` (rays per second, speed.csv), `special`
+// (specialised against general kernels, specialisation.csv). bench/run.sh runs them all
+// and makes the plots and docs/results.md.
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "bench/bench.h"
+#include "common/app.h"
+#include "common/error.h"
+
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, sep);) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+// The run list: one line per scene, "SCENE STAGES BACKENDS" (e.g. "cornell 2,3,4 cpu,gpu"),
+// '#' starts a comment. Lines are kept when they pass the command line's filters.
+std::vector<pt::bench::Run> read_runs(const std::string& path, const std::set<std::string>& scenes,
+                                      const std::set<std::string>& stages, const std::set<std::string>& backends) {
+  std::ifstream in(path);
+  if (!in) throw pt::Error(pt::kExitBadOption, "cannot read the run list " + path + "; give one with --runs");
+  std::vector<pt::bench::Run> runs;
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    number++;
+    line = line.substr(0, line.find('#'));
+    std::stringstream fields(line);
+    std::string scene, stage_list, backend_list, extra;
+    if (!(fields >> scene)) continue;
+    if (!(fields >> stage_list >> backend_list) || (fields >> extra)) {
+      throw pt::Error(pt::kExitBadOption, path + ":" + std::to_string(number) +
+                                              ": expected 'SCENE STAGES BACKENDS', e.g. 'cornell 2,3,4 cpu,gpu'");
+    }
+    if (!scenes.empty() && !scenes.count(scene)) continue;
+    for (const std::string& stage : split(stage_list, ',')) {
+      std::string name = pt::bench::stage_name(stage);
+      if (!stages.empty() && !stages.count(name)) continue;
+      for (const std::string& backend : split(backend_list, ',')) {
+        if (backend != "cpu" && backend != "gpu") {
+          throw pt::Error(pt::kExitBadOption, path + ":" + std::to_string(number) + ": unknown backend '" + backend +
+                                                  "'; use cpu or gpu");
+        }
+        if (!backends.empty() && !backends.count(backend)) continue;
+        runs.push_back({scene, name, backend});
+      }
+    }
+  }
+  return runs;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return pt::guarded_main("pt_bench", [&] {
+    pt::bench::Config config;
+    std::string runs_path = "bench/runs.txt";
+    std::vector<std::string> scenes, stages, backends, sections{"error", "speed", "special"};
+    CLI::App app{"pt_bench: error against time per scene, stage and backend; rays per second; specialised "
+                 "against general kernels. CSV files into --out."};
+    app.add_option("--runs", runs_path, "the run list: lines 'SCENE STAGES BACKENDS'")->capture_default_str();
+    app.add_option("--scene", scenes, "only these scenes of the run list (repeatable)");
+    app.add_option("--stage", stages, "only these stages: 1..4 or program names (repeatable)");
+    app.add_option("--backend", backends, "only these backends: cpu, gpu (repeatable)");
+    app.add_option("--section", sections, "error, speed, special (repeatable)")->capture_default_str();
+    app.add_option("--size", config.size, "image width and height")->capture_default_str()->check(CLI::Range(1, 4096));
+    app.add_option("--seconds", config.seconds, "per run: stop after the first checkpoint that takes this long")
+        ->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_option("--reference-seconds", config.reference_seconds, "render time of a cached reference")
+        ->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_option("--cache", config.cache_dir, "directory of the cached references")->capture_default_str();
+    app.add_option("--out", config.out_dir, "directory of the CSV files")->capture_default_str();
+    app.add_option("--seed", config.seed, "seed of the study's renders")->capture_default_str();
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+      app.exit(e);
+      return 0;
+    } catch (const CLI::ParseError& e) {
+      std::fprintf(stderr, "pt_bench: %s; see --help\n", e.what());
+      return int(pt::kExitBadOption);
+    }
+    std::set<std::string> stage_set, backend_set(backends.begin(), backends.end());
+    for (const std::string& s : stages) stage_set.insert(pt::bench::stage_name(s));
+    for (const std::string& b : backends) {
+      if (b != "cpu" && b != "gpu") throw pt::Error(pt::kExitBadOption, "unknown backend '" + b + "'; use cpu or gpu");
+    }
+    std::set<std::string> section_set(sections.begin(), sections.end());
+    for (const std::string& s : section_set) {
+      if (s != "error" && s != "speed" && s != "special") {
+        throw pt::Error(pt::kExitBadOption, "unknown section '" + s + "'; use error, speed or special");
+      }
+    }
+    if (section_set.count("error")) {
+      std::vector<pt::bench::Run> runs =
+          read_runs(runs_path, std::set<std::string>(scenes.begin(), scenes.end()), stage_set, backend_set);
+      std::printf("== error against time: %zu runs, %dx%d, %.1f s each\n", runs.size(), config.size, config.size,
+                  config.seconds);
+      pt::bench::run_error_study(runs, config);
+    }
+    if (section_set.count("speed")) {
+      std::printf("== rays per second, Cornell box\n");
+      pt::bench::run_speed(config);
+    }
+    if (section_set.count("special")) {
+      std::vector<std::string> st = stages.empty() ? std::vector<std::string>{"1", "2", "3", "4"} : stages;
+      std::vector<std::string> bk = backends.empty() ? std::vector<std::string>{"cpu", "gpu"} : backends;
+      std::printf("== specialised against general kernels\n");
+      pt::bench::run_specialisation(st, bk, config);
+    }
+    return 0;
+  });
+}

@@ -1,0 +1,207 @@
+#!/usr/bin/env python3
+"""pt_bench's report (issue 6): from the CSV files of pt_bench (docs/results/*.csv), the
+log-log plots of relative RMSE against time (one line per stage and backend, a PNG per
+scene) and docs/results.md: the machine, the command, the time each stage and backend
+needs to reach 10%, 3% and 1% relative RMSE, the efficiency ratios stage3/stage2 and
+stage4/stage3, CPU against GPU samples per second, the fitted slope of log error against
+log time (-1/2 for an unbiased estimator), rays per second, specialised kernels.
+Hand-written findings come from docs/results/notes.md, kept between runs."""
+import argparse
+import csv
+import datetime
+import math
+import os
+import subprocess
+import sys
+from collections import OrderedDict
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+LEVELS = (0.10, 0.03, 0.01)
+MIN_FIT_SPP = 16        # below this, fixed costs per render bend the curve
+SLOPE_TOLERANCE = 0.1   # a fitted slope further than this from -1/2 is flagged
+
+
+def read(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def machine():
+    model, cores = "unknown", os.cpu_count()
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+        for line in out.splitlines():
+            if line.startswith("Model name:"):
+                model = line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return model, cores
+
+
+def fit_slope(points):
+    """Least-squares slope of log(error) against log(time)."""
+    if len(points) < 3:
+        return None
+    xs = [math.log(t) for t, _ in points]
+    ys = [math.log(e) for _, e in points]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    sxx = sum((x - mx) ** 2 for x in xs)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx if sxx > 0 else None
+
+
+def group_runs(rows):
+    runs = OrderedDict()
+    for r in rows:
+        key = (r["scene"], r["stage"], r["backend"])
+        runs.setdefault(key, []).append(r)
+    return runs
+
+
+def time_to(rows, level):
+    for r in rows:
+        if float(r["rel_rmse"]) <= level:
+            return "%.3g s" % float(r["wall_s"])
+    return "not reached in %.3g s" % float(rows[-1]["wall_s"])
+
+
+def fit_points(rows):
+    """Checkpoints for the slope: enough samples, and error well above the reference's own."""
+    ref_err = float(rows[0]["reference_rel_error"] or 0.0)
+    return [(float(r["wall_s"]), float(r["rel_rmse"])) for r in rows
+            if int(r["spp"]) >= MIN_FIT_SPP and float(r["rel_rmse"]) > 3.0 * ref_err and float(r["rel_rmse"]) > 0]
+
+
+def plot_scene(scene, runs, out_dir):
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    for (sc, stage, backend), rows in runs.items():
+        if sc != scene:
+            continue
+        ax.loglog([float(r["wall_s"]) for r in rows], [float(r["rel_rmse"]) for r in rows],
+                  marker="o", markersize=3, linestyle="-" if backend == "cpu" else "--",
+                  label="%s %s" % (stage.split("_")[0], backend))
+    ax.set_xlabel("wall time (s)")
+    ax.set_ylabel("relative RMSE")
+    ax.set_title(scene)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    name = "error_%s.png" % os.path.basename(scene).replace(".", "_")
+    fig.savefig(os.path.join(out_dir, name), dpi=90)
+    plt.close(fig)
+    return name
+
+
+def samples_per_s(rows):
+    return float(rows[-1]["samples_per_s"])  # the longest render: fixed costs matter least
+
+
+def efficiency(rows):
+    return float(rows[-1]["efficiency"])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--results", default="docs/results")
+    ap.add_argument("--command", default="./tutorial bench")
+    ap.add_argument("--markdown", default="docs/results.md")
+    a = ap.parse_args()
+
+    conv = read(os.path.join(a.results, "convergence.csv"))
+    speed = read(os.path.join(a.results, "speed.csv"))
+    special = read(os.path.join(a.results, "specialisation.csv"))
+    if not (conv or speed or special):
+        sys.exit("report.py: no CSV files in %s; run build/bin/pt_bench first (bench/run.sh)" % a.results)
+    runs = group_runs(conv)
+    scenes = list(OrderedDict.fromkeys(k[0] for k in runs))
+    model, cores = machine()
+    gpu_devices = sorted({r["device"] for r in conv + speed if r.get("backend") == "gpu"})
+
+    md = ["# Results: speed against accuracy", "",
+          "Made by `%s` (bench/run.sh: `build/bin/pt_bench`, then `bench/report.py`) on %s." %
+          (a.command, datetime.date.today().isoformat()), "",
+          "- Machine: %s, %s cores; GPU backend: %s." % (model, cores, ", ".join(gpu_devices) or "none"),
+          "- Relative RMSE: OpenImageIO's `ImageBufAlgo::compare` RMSE over pixels and RGB channels, "
+          "divided by the reference image's mean. Each checkpoint is a fresh render of 1, 2, 4, ... "
+          "samples per pixel (the time a user waits for that image); efficiency is 1 / (MSE x time).",
+          "- References: the closed form for the analytic scenes (furnace, floors under square lights: "
+          "Lambert's polygon formula), else a stage4 CPU render cached under a key of scene, size and "
+          "kernel; its own estimated relative error is listed and bounds what can be measured.", ""]
+
+    notes = os.path.join(a.results, "notes.md")
+    if os.path.exists(notes):
+        md += [open(notes).read().rstrip(), ""]
+
+    if runs:
+        md += ["## Time to reach a relative RMSE", ""]
+        for scene in scenes:
+            png = plot_scene(scene, runs, a.results)
+            keyed = [(k, v) for k, v in runs.items() if k[0] == scene]
+            ref = keyed[0][1][0]
+            md += ["### %s" % scene, "",
+                   "Reference: %s (its relative error %.2g). ![error against time](results/%s)" %
+                   (ref["reference"], float(ref["reference_rel_error"] or 0), png), "",
+                   "| stage | backend | 10% | 3% | 1% | last: spp, rel. RMSE | samples/s | slope |",
+                   "|---|---|---|---|---|---|---|---|"]
+            for (sc, stage, backend), rows in keyed:
+                slope = fit_slope(fit_points(rows))
+                s = "n/a" if slope is None else "%.2f%s" % (slope, "" if abs(slope + 0.5) <= SLOPE_TOLERANCE else " **(!)**")
+                md.append("| %s | %s | %s | %s | %s | %s, %.3g | %.3g | %s |" % (
+                    stage, backend, time_to(rows, 0.10), time_to(rows, 0.03), time_to(rows, 0.01),
+                    rows[-1]["spp"], float(rows[-1]["rel_rmse"]), samples_per_s(rows), s))
+            md.append("")
+
+        md += ["## Efficiency ratios and CPU against GPU", "",
+               "Efficiency 1/(MSE x time) at each run's last checkpoint; a ratio above 1 means the later "
+               "stage reaches the same error sooner. GPU/CPU is the ratio of samples per second.", "",
+               "| scene | backend | stage3/stage2 | stage4/stage3 |", "|---|---|---|---|"]
+        for scene in scenes:
+            for backend in ("cpu", "gpu"):
+                eff = {k[1].split("_")[0]: efficiency(v) for k, v in runs.items() if k[0] == scene and k[2] == backend}
+                if not eff:
+                    continue
+                r32 = "%.3g" % (eff["stage3"] / eff["stage2"]) if "stage3" in eff and eff.get("stage2") else "-"
+                r43 = "%.3g" % (eff["stage4"] / eff["stage3"]) if "stage4" in eff and eff.get("stage3") else "-"
+                md.append("| %s | %s | %s | %s |" % (scene, backend, r32, r43))
+        md += ["", "| scene | stage | CPU samples/s | GPU samples/s | GPU/CPU |", "|---|---|---|---|---|"]
+        for scene in scenes:
+            for stage in OrderedDict.fromkeys(k[1] for k in runs if k[0] == scene):
+                c, g = runs.get((scene, stage, "cpu")), runs.get((scene, stage, "gpu"))
+                if c and g:
+                    md.append("| %s | %s | %.3g | %.3g | %.2f |" % (scene, stage, samples_per_s(c), samples_per_s(g),
+                                                                   samples_per_s(g) / samples_per_s(c)))
+        md += ["", "Slopes are least-squares fits of log(relative RMSE) against log(time) over the checkpoints "
+               "with at least %d spp and an error above 3x the reference's own; **(!)** marks a slope further "
+               "than %.1f from -1/2 (see the notes above for why)." % (MIN_FIT_SPP, SLOPE_TOLERANCE), ""]
+
+    if speed:
+        md += ["## Speed: brute-force closest hit on the Cornell box", "",
+               "| method | backend | device | M rays/s | target |", "|---|---|---|---|---|"]
+        for r in speed:
+            t = float(r["target_mrays_per_s"])
+            md.append("| %s | %s | %s | %.2f | %s |" % (r["method"], r["backend"], r["device"],
+                                                      float(r["mrays_per_s"]), "%g" % t if t > 0 else "-"))
+        md.append("")
+
+    if special:
+        md += ["## Specialised against general kernels (issue 8)", "",
+               "Samples per second with the kernel specialised to the scene's features (the default) and "
+               "with `--all-features` (the general kernel), best of two alternating runs each.", "",
+               "| scene | stage | backend | specialised | general | ratio |", "|---|---|---|---|---|---|"]
+        for r in special:
+            md.append("| %s | %s | %s | %.3g | %.3g | %.2f |" % (
+                r["scene"], r["stage"], r["backend"], float(r["specialised_samples_per_s"]),
+                float(r["general_samples_per_s"]), float(r["ratio"])))
+        md.append("")
+
+    with open(a.markdown + ".tmp", "w") as f:
+        f.write("\n".join(md) + "\n")
+    os.replace(a.markdown + ".tmp", a.markdown)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The whole speed-versus-accuracy lab (issue 6): pt_bench's three sections into CSV files
+# in docs/results/, then the log-log plots of error against time and docs/results.md
+# (bench/report.py). Run by `./tutorial bench` after the build; about 15 minutes on 2 cores.
+# Environment: BUILD_DIR (default build); PT_BENCH_ARGS: more pt_bench options (e.g.
+# "--scene cornell --seconds 1" for a quick look).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD_DIR=${BUILD_DIR:-build}
+OUT=docs/results
+mkdir -p "$OUT"
+COMMAND="$BUILD_DIR/bin/pt_bench --runs bench/runs.txt --out $OUT --cache $BUILD_DIR/bench_cache ${PT_BENCH_ARGS:-}"
+echo "bench: $COMMAND" >&2
+# shellcheck disable=SC2086
+$COMMAND
+python3 bench/report.py --results "$OUT" --command "./tutorial bench" --markdown docs/results.md
+echo "bench: docs/results.md and the plots in $OUT/" >&2

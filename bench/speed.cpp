@@ -1,0 +1,120 @@
+// pt_bench's speed section (issue 6, "Speed targets"): rays per second of brute-force
+// closest-hit ray casting on the Cornell box. Three measurements in the same run: the
+// renderer's own intersect_scene() (common/shaders/intersect.glsl compiled as C++, as the
+// CPU kernels compile it), the structure-of-arrays reference loop (soa_reference.cpp), and
+// stage1_raycast (one camera ray per sample, Eq. 2) on each backend, whose samples per
+// second are rays per second with the camera and the film's work on top.
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "bench/bench.h"
+#include "bench/soa_reference.h"
+#include "common/error.h"
+#include "common/shaders/cpp_prelude.h"
+
+namespace {
+namespace kernel {  // the renderer's intersection code, as a CPU kernel compiles it
+using namespace pt::glsl;
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/camera.glsl"
+#include "common/shaders/intersect.glsl"
+}  // namespace kernel
+}  // namespace
+
+namespace pt::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Runs work(first, count) over `count` rays split across the cores, again and again until
+// a second has passed; returns rays per second.
+template <class F> double rays_per_second(std::size_t count, F work) {
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::uint64_t done = 0;
+  Clock::time_point start = Clock::now();
+  double seconds = 0.0;
+  while (seconds < 1.0) {
+    std::vector<std::thread> pool;
+    for (unsigned i = 0; i < threads; i++) {
+      std::size_t a = count * i / threads, b = count * (i + 1) / threads;
+      pool.emplace_back([&, a, b] { work(a, b - a); });
+    }
+    for (std::thread& t : pool) t.join();
+    done += count;
+    seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  return double(done) / seconds;
+}
+
+double stage1_samples_per_second(const std::string& backend, const Scene& scene) {
+  RenderSettings s;
+  s.width = s.height = 256;
+  s.spp = 64;
+  Backend& b = backend_for("1", backend);
+  render(b, scene, s);  // warm up: the GPU compiles its pipeline
+  RenderResult r = render(b, scene, s);
+  return double(s.width) * s.height * double(s.spp) / r.seconds;
+}
+
+}  // namespace
+
+void run_speed(const Config& config) {
+  Scene scene = load_bench_scene("cornell");
+  // Camera rays through random points of a square image, the same for every method.
+  const std::size_t count = 1 << 18;
+  Camera cam = make_camera(scene, 1.0f);
+  std::vector<glm::vec3> origins(count), dirs(count);
+  std::mt19937 rng(config.seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (std::size_t i = 0; i < count; i++) {
+    kernel::Ray r = kernel::camera_ray(cam, glm::vec2(u(rng), u(rng)));
+    origins[i] = r.origin, dirs[i] = r.dir;
+  }
+  kernel::triangles = scene.triangles.data();
+  kernel::spheres = scene.spheres.data();
+  kernel::params.counts = glm::uvec4(uint(scene.triangles.size()), uint(scene.spheres.size()), 0u, 0u);
+  std::atomic<double> sink{0.0};  // the sums keep the work alive
+  double renderer = rays_per_second(count, [&](std::size_t first, std::size_t n) {
+    double sum = 0.0;
+    for (std::size_t i = first; i < first + n; i++) {
+      sum += kernel::intersect_scene(kernel::Ray(origins[i], dirs[i]), kernel::kInfinity).t;
+    }
+    sink.fetch_add(sum);
+  });
+  SoaTriangles soa;
+  for (const Triangle& t : scene.triangles) soa.add(glm::vec3(t.p0), glm::vec3(t.p1), glm::vec3(t.p2));
+  double reference = rays_per_second(count, [&](std::size_t first, std::size_t n) {
+    sink.fetch_add(soa_closest_hits(soa, origins.data() + first, dirs.data() + first, n));
+  });
+
+  std::filesystem::create_directories(config.out_dir);
+  std::string path = config.out_dir + "/speed.csv";
+  std::ofstream csv(path);
+  if (!csv) throw Error(kExitOutput, "cannot write " + path + "; check --out");
+  csv << "method,backend,device,mrays_per_s,target_mrays_per_s\n";
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  auto row = [&](const char* method, const std::string& backend, const std::string& device, double rays, double target) {
+    csv << method << "," << backend << "," << device << "," << rays / 1e6 << "," << target << "\n";
+    std::printf("%-40s %-4s %-28s %7.2f M rays/s%s\n", method, backend.c_str(), device.c_str(), rays / 1e6,
+                target > 0.0 ? (" (target " + std::to_string(int(target)) + ")").c_str() : "");
+  };
+  std::string cpu = std::to_string(threads) + " threads";
+  row("intersect_scene (renderer)", "cpu", cpu, renderer, 20.0);
+  row("SoA reference loop (-O3)", "cpu", cpu, reference, 0.0);
+  row("stage1_raycast samples/s", "cpu", backend_for("1", "cpu").device_name(), stage1_samples_per_second("cpu", scene), 20.0);
+  try {
+    Backend& gpu = backend_for("1", "gpu");
+    row("stage1_raycast samples/s", "gpu", gpu.device_name(), stage1_samples_per_second("gpu", scene), 10.0);
+  } catch (const Error& e) {
+    std::printf("gpu: %s (no GPU row)\n", e.what());
+  }
+  if (sink.load() == 1.2345) std::printf(" ");
+}
+
+}  // namespace pt::bench
