@@ -3,6 +3,8 @@
 // output file is never clobbered by a failed run.
 #include <catch2/catch.hpp>
 
+#include "tests/support/child_signals.h"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -186,25 +188,6 @@ TEST_CASE("cli: without a Vulkan driver, gpu exits 4 and auto falls back to the 
 }
 
 namespace {
-// Waits (up to 60 s) until process `pid` runs the stage program (the forked test process
-// before exec has Catch's own handlers) and catches signal `signo` (/proc/PID/status SigCgt).
-void wait_for_handler(pid_t pid, int signo) {
-  const fs::path program = fs::canonical(PT_STAGE1_BIN);
-  for (int i = 0; i < 6000; i++) {
-    std::error_code ec;
-    if (fs::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec) != program) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      continue;
-    }
-    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-    std::string line;
-    while (std::getline(status, line)) {
-      if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) >> (signo - 1)) & 1u) return;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-}
-
 // Starts a long render, sends `signals` signals after `delay_ms`, returns the exit code.
 int interrupted_render(const std::string& backend, const std::string& out, int signo, int signals, int delay_ms,
                        const char* size = "64") {
@@ -220,7 +203,7 @@ int interrupted_render(const std::string& backend, const std::string& out, int s
   }
   // On a loaded machine start-up can take longer than any fixed delay: wait until the program
   // has installed its handlers (the signal is in /proc/PID/status SigCgt), then the delay.
-  wait_for_handler(pid, signo);
+  pt_test::wait_for_handler(pid, PT_STAGE1_BIN, signo);
   std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
   for (int i = 0; i < signals; i++) {
     // Signals of one kind do not queue: a second one sent at once would merge with the first.

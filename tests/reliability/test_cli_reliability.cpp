@@ -6,6 +6,8 @@
 // Not part of the article: the machinery of the stage programs.
 #include <catch2/catch.hpp>
 
+#include "tests/support/child_signals.h"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -105,6 +107,7 @@ int interrupted(const std::vector<std::string>& args, int delay_ms) {
     ::execv(PT_STAGE1_BIN, argv.data());
     ::_exit(127);
   }
+  pt_test::wait_for_handler(pid, PT_STAGE1_BIN, SIGINT);  // start-up may be slow on a loaded machine
   std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
   ::kill(pid, SIGINT);
   int status = 0;
@@ -129,9 +132,8 @@ TEST_CASE("cli: Ctrl-C with --checkpoint, then --resume, equals the uninterrupte
   REQUIRE(expected.spp == 3000);
 
   std::mt19937 rng(3);
-  // After start-up (a signal before the handlers are installed would kill it), and while
-  // the 3000 spp render (about 3 s here) is running.
-  std::uniform_int_distribution<int> delay(500, 1800);
+  // After the handlers are installed, while the 3000 spp render (about 3 s here) is running.
+  std::uniform_int_distribution<int> delay(0, 1500);
   int resumed_from_checkpoint = 0;
   for (int i = 0; i < 2; i++) {
     const std::string out = path("parted_" + std::to_string(i) + ".exr"), ckpt = out + ".ckpt";
