@@ -9,7 +9,7 @@ function(pt_embed_shader NAME SOURCE)
     OUTPUT ${header}
     COMMAND ${GLSLANG_VALIDATOR} --quiet -V --target-env vulkan1.1 -I${PROJECT_SOURCE_DIR} -DPT_LAB=${PT_LAB}
             --vn ${NAME}_spirv -o ${header} ${SOURCE}
-    DEPENDS ${SOURCE} ${deps}
+    DEPENDS ${SOURCE} ${deps} ${PT_LAB_STAMP}
     COMMENT "Compiling ${NAME} to SPIR-V"
     VERBATIM)
   set(${NAME}_SPIRV_HEADER ${header} PARENT_SCOPE)

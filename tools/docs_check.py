@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Keeps the book (README.md and docs/, the chapters beside the article's Eq. 1-5) true to
-the code, so the docs cannot drift from what the program computes.
+"""Keeps the book true to the code: README.md, the stage folders' README.md and docs/, the
+chapters beside the article's Eq. 1-5, so the docs cannot drift from what the program
+computes.
 
 Three things are checked in every Markdown file:
 
@@ -47,7 +48,10 @@ class Problems:
 
 
 def markdown_files(root):
+    """README.md, the stage folders' README.md files, and everything under docs/."""
     files = [os.path.join(root, "README.md")]
+    files += sorted(os.path.join(root, d, "README.md") for d in os.listdir(root)
+                    if d.startswith("stage") and os.path.isfile(os.path.join(root, d, "README.md")))
     for base, dirs, names in os.walk(os.path.join(root, "docs")):
         dirs.sort()
         files += [os.path.join(base, n) for n in sorted(names) if n.endswith(".md")]

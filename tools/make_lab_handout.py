@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""Makes the students' copy of lab N (docs/labs/README.md; the labs follow the article's
+Eq. 2 to 5): the repository without .git and build folders, in which the reference code of
+lab N's functions (the bodies below each PT_LAB_HOOK(N, ...)) and the chapters' excerpts
+of them are removed, so the answer is not handed out with the question.
+usage: tools/make_lab_handout.py N DEST     (DEST must not exist yet)"""
+import os
+import re
+import shutil
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import docs_check  # noqa: E402
+
+# What a function of each return type returns in the handout in place of its body; lab N's
+# build never runs it (the hook returns the student's version first).
+DEFAULTS = {"vec3": "vec3(0.0f)", "float": "0.0f", "LightSample": "no_light()"}
+SOURCE_DIRS = ("common", "stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect")
+
+
+def strip_sources(dest, lab):
+    """Replaces the body below each hook of `lab`; returns the (path, name) of each function."""
+    hook = re.compile(r"^\s*PT_LAB_HOOK\(" + str(lab) + r",")
+    names = []
+    for top in SOURCE_DIRS:
+        for base, _, files in os.walk(os.path.join(dest, top)):
+            for f in sorted(files):
+                if not f.endswith((".glsl", ".h", ".cpp", ".comp")):
+                    continue
+                path = os.path.join(base, f)
+                lines = docs_check.read_lines(path)
+                if not any(hook.match(l) for l in lines):
+                    continue
+                out = []
+                i = 0
+                while i < len(lines):
+                    out.append(lines[i])
+                    if not hook.match(lines[i]):
+                        i += 1
+                        continue
+                    definition = i - 1
+                    m = re.match(r"^(\w+)\s+(\w+)\s*\(", lines[definition])
+                    end = docs_check.block_end(lines, definition)
+                    if not m or end is None or m.group(1) not in DEFAULTS:
+                        raise SystemExit(f"make_lab_handout: cannot read the function around "
+                                         f"{os.path.relpath(path, dest)}:{i + 1}; is the hook its first line?")
+                    names.append((os.path.relpath(path, dest), m.group(2)))
+                    out.append(f"  // The reference code is not in the lab {lab} handout: write "
+                               f"lab{lab}_... in labs/lab{lab}.glsl (docs/labs/lab{lab}.md).")
+                    out.append(f"  return {DEFAULTS[m.group(1)]};")
+                    out.append(lines[end])
+                    i = end + 1
+                with open(path, "w", encoding="utf-8") as fh:
+                    fh.write("\n".join(out))
+    return names
+
+
+def strip_docs(dest, lab, names):
+    """Replaces the docs' excerpts of the removed functions by a note."""
+    for md in docs_check.markdown_files(dest):
+        lines = docs_check.read_lines(md)
+        out = []
+        i = 0
+        while i < len(lines):
+            m = docs_check.EXCERPT.match(lines[i])
+            if m and (m.group(1), m.group(2)) in names and i + 1 < len(lines) and docs_check.FENCE.match(lines[i + 1]):
+                end = i + 2
+                while end < len(lines) and not docs_check.FENCE.match(lines[end]):
+                    end += 1
+                out += [lines[i + 1], f"// {m.group(2)}: not in the lab {lab} handout; you write it in "
+                                      f"labs/lab{lab}.glsl", "```"]
+                i = end + 1
+                continue
+            out.append(lines[i])
+            i += 1
+        if out != lines:
+            with open(md, "w", encoding="utf-8") as fh:
+                fh.write("\n".join(out))
+
+
+def main():
+    if len(sys.argv) != 3 or sys.argv[1] not in ("1", "2", "3", "4"):
+        print("usage: tools/make_lab_handout.py N DEST   (N = 1, 2, 3 or 4; DEST a new folder)", file=sys.stderr)
+        return 2
+    lab, dest = int(sys.argv[1]), sys.argv[2]
+    if os.path.exists(dest):
+        print(f"make_lab_handout: {dest} already exists; give a new folder so that nothing is overwritten",
+              file=sys.stderr)
+        return 2
+    root = os.path.dirname(HERE)
+    shutil.copytree(root, dest, ignore=shutil.ignore_patterns(".git", "build*", "out"))
+    names = strip_sources(dest, lab)
+    if not names:
+        shutil.rmtree(dest)
+        print(f"make_lab_handout: no PT_LAB_HOOK({lab}, ...) found in the sources", file=sys.stderr)
+        return 1
+    strip_docs(dest, lab, names)
+    # The shorter bodies move the lines below them: renumber the docs' line references.
+    problems = docs_check.run(dest, update=True)
+    if problems.errors:
+        print("\n".join(problems.errors), file=sys.stderr)
+        return 1
+    print(f"make_lab_handout: {dest}: lab {lab}, reference code removed from {', '.join(p + '#' + n for p, n in names)}; "
+          f"build it with -DPT_LAB={lab} and grade with ctest -L lab{lab}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
