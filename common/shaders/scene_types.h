@@ -20,6 +20,10 @@ const uint kMaterialMirror = 1u;     // metallic 1, roughness 0: Schlick Fresnel
 const uint kMaterialConductor = 2u;  // metallic 1, roughness > 0: GGX, alpha = roughness^2
 const uint kMaterialGlass = 3u;      // KHR_materials_transmission: smooth dielectric
 const uint kMaterialMixed = 4u;      // 0 < metallic < 1: conductor w.p. metallic, else diffuse
+// A GGX conductor smoother than this is a perfect mirror (a delta): below it the float
+// evaluation of D(h) = alpha^2 / (pi (...)^2) at the peak under- and overflows (alpha 0:
+// 0 / 0), and the lobe is narrower than a float direction can resolve anyway (docs/stability.md).
+const float kGgxMirrorAlpha = 1e-7f;
 
 // Primitive kinds, as the intersection search reports them.
 const uint kPrimNone = 0u;
