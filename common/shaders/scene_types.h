@@ -66,7 +66,8 @@ const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a saf
 const uint kCounterZeroPdf = 1u;        // paths ended by a zero pdf or a non-finite weight
 const uint kCounterNonFinite = 2u;      // samples dropped because they were NaN or Inf
 const uint kCounterNonFinitePixel = 3u; // the lowest pixel index with a dropped sample
-const uint kCounterCount = 4u;
+const uint kCounterLoopLimit = 4u;      // pixel passes whose loops the driver cut short (lavapipe)
+const uint kCounterCount = 5u;
 
 struct Triangle {
   vec4 p0;     // xyz: vertex 0 (world space)
