@@ -4,12 +4,20 @@
 // (spawn.glsl, the offsets that keep Eq. (2)-(5)'s next ray off the surface); GGX at
 // incidence up to 89.99 degrees and alpha from 0 to 1 keeps f cos / pdf finite and <= 1
 // (stage3's Eq. 4 weight); glass at grazing incidence and under total internal reflection
-// has Fresnel in [0, 1] (1 under TIR) and no NaN.
+// has Fresnel in [0, 1] (1 under TIR) and no NaN; the film's means of radiance 1e-20 and
+// 1e20 survive the float32 EXR output unchanged, down to float's subnormals.
 #include <catch2/catch.hpp>
 
-#include <cmath>
-#include <random>
+#include <OpenImageIO/imageio.h>
 
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <unistd.h>
+
+#include "common/film.h"
+#include "common/image_output.h"
 #include "common/scene.h"
 #include "common/shaders/cpp_prelude.h"
 
@@ -195,5 +203,35 @@ TEST_CASE("stability: glass at grazing incidence and under total internal reflec
         }
       }
     }
+  }
+}
+
+TEST_CASE("stability: radiance from 1e-20 to 1e20 goes through the film and the EXR file unchanged; float's "
+          "edges are kept", "[stability][output]") {
+  // The EXR is float32 (image_output.cpp): 1e-20 and 1e20 are exact there; so are float's
+  // largest value and its smallest subnormal. (A half-float EXR would hold neither: its
+  // range is 6e-8 (subnormal) to 65504.)
+  const float values[] = {1e-20f, 1e20f, 1.0f, std::numeric_limits<float>::max(),
+                          std::numeric_limits<float>::min(), std::numeric_limits<float>::denorm_min()};
+  const int n = int(std::size(values));
+  Film film(n, 1);
+  std::vector<glm::vec4> pass;
+  for (float v : values) pass.push_back(glm::vec4(v, v, v, v));  // one sample per pixel
+  film.add_pass(pass, 1);
+  std::vector<float> rgb = film.mean_rgb();
+  for (int i = 0; i < n; i++) CHECK(rgb[3 * i] == values[i]);
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("pt_stability_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  std::string path = (dir / "edges.exr").string();
+  pt::OutputFile(path).write(rgb, n, 1, pt::ImageMetadata{});
+  auto in = OIIO::ImageInput::open(path);
+  REQUIRE(in);
+  std::vector<float> back(3 * n);
+  REQUIRE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, back.data()));
+  in->close();
+  std::filesystem::remove_all(dir);
+  for (int i = 0; i < n; i++) {
+    INFO("value " << values[i]);
+    CHECK(back[3 * i] == values[i]);
   }
 }
