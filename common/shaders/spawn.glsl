@@ -20,9 +20,12 @@ float ulp_above(float x) {
 const float kOffsetUlps = 8.0f;
 
 // Near zero ulps shrink to nothing, but a point there is known only as well as the
-// vertices it was interpolated from: coordinates count as at least the scene's radius.
+// vertices it was interpolated from: coordinates count as at least kOffsetSceneScale
+// times the scene's radius (8 ulps of that are 1.5e-5 radii, the old near-zero offset).
+const float kOffsetSceneScale = 16.0f;
+
 float offset_height(vec3 p, vec3 n) {
-  float size = params.scale.x;
+  float size = kOffsetSceneScale * params.scale.x;
   return kOffsetUlps * (abs(n.x) * ulp_above(max(abs(p.x), size)) + abs(n.y) * ulp_above(max(abs(p.y), size)) +
                         abs(n.z) * ulp_above(max(abs(p.z), size)));
 }
