@@ -15,7 +15,9 @@ class Film {
  public:
   Film(int width, int height);
 
-  // Adds one pass: per pixel (rgb sum, squared-luminance sum) of `samples` samples.
+  // Adds one pass: per pixel (rgb sum, sqrt of the squared-luminance sum) of `samples`
+  // samples. The kernels return the root, which a float holds for radiance from 1e-20 to
+  // 1e20 (render_pixel.glsl); the film squares it in double (range 1e-308 to 1e308).
   void add_pass(std::span<const glm::vec4> pass, std::uint64_t samples);
 
   // Adds another film of the same size (independent samples of the same pixels).

@@ -133,6 +133,7 @@ void RenderCounters::add(const PassResult& pass) {
   depth_cap += pass.counters[kCounterDepthCap];
   zero_pdf += pass.counters[kCounterZeroPdf];
   non_finite += pass.counters[kCounterNonFinite];
+  loop_limit += pass.counters[kCounterLoopLimit];
   first_non_finite_pixel = std::min(first_non_finite_pixel, pass.counters[kCounterNonFinitePixel]);
 }
 

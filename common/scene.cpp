@@ -193,10 +193,12 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
     switch (m.kind.x) {
       case kMaterialDiffuse: mask |= kFeatureDiffuse; break;
       case kMaterialMirror: mask |= kFeatureMirror; break;
-      case kMaterialConductor: mask |= kFeatureConductor; break;
+      case kMaterialConductor:  // below kGgxMirrorAlpha the kernels scatter it as a mirror
+        mask |= kFeatureConductor | (m.params.y < kGgxMirrorAlpha ? kFeatureMirror : 0u);
+        break;
       case kMaterialGlass: mask |= kFeatureGlass; break;
       default:  // mixed: the diffuse lobe, and the conductor's (a mirror when alpha is 0)
-        mask |= kFeatureMixed | kFeatureDiffuse | (m.params.y > 0.0f ? kFeatureConductor : kFeatureMirror);
+        mask |= kFeatureMixed | kFeatureDiffuse | (m.params.y >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror);
     }
   };
   for (const Triangle& t : scene.triangles) add_material(scene.materials[t.info.x]);

@@ -19,11 +19,18 @@ vec3 schlick_fresnel(vec3 f0, float cos_theta) {
 
 // Unpolarised Fresnel reflectance of a smooth dielectric; eta = n_transmitted / n_incident.
 // Returns 1 under total internal reflection.
+// cos_t^2 = 1 - sin_t^2 is formed as (eta^2 - 1 + cos_i^2) / eta^2: through 1 - sin^2 it
+// kept only the float spacing near 1 (6e-8), so at 89.99 degrees (cos_i^2 = 3e-8) glass of
+// ior 1 reflected 2.8% instead of nothing.
+float cos2_transmitted(float cos_i, float eta) {
+  return (eta * eta - 1.0f + cos_i * cos_i) / (eta * eta);
+}
+
 float fresnel_dielectric(float cos_i, float eta) {
   cos_i = clamp(cos_i, 0.0f, 1.0f);
-  float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
-  if (sin2_t >= 1.0f) return 1.0f;
-  float cos_t = sqrt(1.0f - sin2_t);
+  float cos2_t = cos2_transmitted(cos_i, eta);
+  if (cos2_t <= 0.0f) return 1.0f;
+  float cos_t = sqrt(cos2_t);
   float r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
   float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
   return 0.5f * (r_parl * r_parl + r_perp * r_perp);
@@ -111,11 +118,15 @@ vec3 lambert_brdf(vec3 albedo, vec3 wo, vec3 wi) {
 
 // Which lobe a surface scatters by: a mixed material (0 < metallic < 1) is the conductor
 // with probability metallic, else the diffuse (the contract (README.md)); u is a uniform number.
+// A conductor with alpha below kGgxMirrorAlpha scatters as the perfect mirror.
 uint choose_lobe(Material m, float u) {
   uint kind = m.kind.x;
+  if (has_feature(kFeatureConductor) && kind == kMaterialConductor) {
+    return m.params.y < kGgxMirrorAlpha ? kMaterialMirror : kind;  // alpha ~ 0: a mirror
+  }
   if (!has_feature(kFeatureMixed) || kind != kMaterialMixed) return kind;
   if (u >= m.params.x) return kMaterialDiffuse;
-  return m.params.y > 0.0f ? kMaterialConductor : kMaterialMirror;
+  return m.params.y >= kGgxMirrorAlpha ? kMaterialConductor : kMaterialMirror;
 }
 
 // f of a non-delta lobe (kMaterialDiffuse or kMaterialConductor).
@@ -166,8 +177,7 @@ DeltaBounce sample_glass(Material m, vec3 wo, bool entering, float u) {
   float eta = entering ? m.params.w : 1.0f / m.params.w;
   float F = fresnel_dielectric(wo.z, eta);
   if (u < F) return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), vec3(1.0f));
-  float sin2_t = max(0.0f, 1.0f - wo.z * wo.z) / (eta * eta);
-  float cos_t = sqrt(max(0.0f, 1.0f - sin2_t));
+  float cos_t = sqrt(max(0.0f, cos2_transmitted(min(abs(wo.z), 1.0f), eta)));
   vec3 wi = vec3(-wo.x / eta, -wo.y / eta, -cos_t);
   return DeltaBounce(wi, vec3(m.base_color) * (1.0f / (eta * eta)));
 }

@@ -159,6 +159,12 @@ float triangle_light_pdf(uint index, vec3 wi, float dist) {
   return dist * dist / (cos_y * area) * pick;
 }
 
+// Units in the last place of the light point's coordinates by which a shadow ray stops
+// short of it: p + dist wi rebuilds the point only to within a few ulps of its magnitude,
+// which far from the origin (ulp 0.0078 at 1e5) is far more than the relative 1e-4 of a
+// short ray, and a shadow ray that reached past the point hit the light itself (black).
+const float kShadowEndUlps = 16.0f;
+
 // Whether anything lies between the surface point p (normal n) and the light sample. The
 // shadow ray starts off the surface (spawn_ray); its length is measured from there, and
 // stops just short of the light point so that the light itself does not block it.
@@ -166,10 +172,12 @@ bool occluded(vec3 p, vec3 n, LightSample ls) {
   Ray shadow = spawn_ray(p, n, ls.wi);
   if (ls.dist == kInfinity) return intersect_scene(shadow, kInfinity).kind != kPrimNone;
   // Aim from the offset origin at the light point itself (pbrt's SpawnRayTo).
-  vec3 to_light = p + ls.dist * ls.wi - shadow.origin;
+  vec3 y = p + ls.dist * ls.wi;
+  vec3 to_light = y - shadow.origin;
   float length_to_light = length(to_light);
   shadow.dir = to_light / length_to_light;
-  return intersect_scene(shadow, length_to_light * (1.0f - 1e-4f)).kind != kPrimNone;
+  float short_of = max(length_to_light * 1e-4f, kShadowEndUlps * ulp_above(max(abs(y.x), max(abs(y.y), abs(y.z)))));
+  return intersect_scene(shadow, length_to_light - short_of).kind != kPrimNone;
 }
 
 #endif  // PT_LIGHTS_GLSL

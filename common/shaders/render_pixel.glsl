@@ -9,13 +9,18 @@ float luminance(vec3 c) {
   return dot(c, vec3(0.2126f, 0.7152f, 0.0722f));
 }
 
-// Returns (sum of the samples' radiance, sum of their squared luminance); the host adds
-// these up in double precision (film.cpp) and derives the mean and its variance.
+// Returns (sum of the samples' radiance, sqrt of the sum of their squared luminance); the
+// host squares the latter and adds both up in double precision (film.cpp) for the mean and
+// its variance. The root of the sum of squares is kept as scale x sqrt(ssq) (LAPACK's
+// nrm2): a square is never formed in float, where radiance 1e20 would overflow (1e40) and
+// 1e-20 flush to zero (1e-40 is below the smallest normal float; GPUs flush denormals).
 vec4 render_pixel(uint x, uint y) {
   vec3 sum = vec3(0.0f);
-  float sum_sq = 0.0f;
+  float scale = 0.0f;  // the largest |luminance| so far
+  float ssq = 1.0f;    // sum of (luminance / scale)^2
   uint pixel_index = y * params.image.x + x;
-  for (uint s = 0u; s < params.image.w; s++) {
+  uint s = 0u;
+  for (; s < params.image.w; s++) {
     rng_seed(pixel_index, params.image.z + s, params.options.x);
     float fx = (float(x) + rng_next_float()) / float(params.image.x);
     float fy = (float(y) + rng_next_float()) / float(params.image.y);
@@ -26,11 +31,26 @@ vec4 render_pixel(uint x, uint y) {
       atomicMin(counters[kCounterNonFinitePixel], pixel_index);
       continue;
     }
-    float lum = luminance(L);
+    float a = abs(luminance(L));
     sum += L;
-    sum_sq += lum * lum;
+    if (a > scale) {
+      float r = scale / a;
+      ssq = 1.0f + ssq * r * r;
+      scale = a;
+    } else if (a > 0.0f) {
+      float r = a / scale;
+      ssq += r * r;
+    }
   }
-  return vec4(sum, sum_sq);
+  // lavapipe (Mesa's llvmpipe) silently ends every loop of an invocation once 65535 loop
+  // iterations have run in all of them together (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS):
+  // bounces x triangles tested x samples of the pass. Paths were cut short (the furnace of
+  // albedo 0.999 rendered 160-600 instead of 1000 on the GPU only). After that every loop
+  // runs once at most: a loop that must run image.w + 1 times tells, and the host reports it.
+  uint probe = 0u;
+  for (uint i = 0u; i <= params.image.w; i++) probe++;
+  if (s != params.image.w || probe != params.image.w + 1u) atomicAdd(counters[kCounterLoopLimit], 1u);
+  return vec4(sum, scale * sqrt(ssq));
 }
 
 #endif  // PT_RENDER_PIXEL_GLSL

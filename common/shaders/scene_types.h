@@ -20,6 +20,10 @@ const uint kMaterialMirror = 1u;     // metallic 1, roughness 0: Schlick Fresnel
 const uint kMaterialConductor = 2u;  // metallic 1, roughness > 0: GGX, alpha = roughness^2
 const uint kMaterialGlass = 3u;      // KHR_materials_transmission: smooth dielectric
 const uint kMaterialMixed = 4u;      // 0 < metallic < 1: conductor w.p. metallic, else diffuse
+// A GGX conductor smoother than this is a perfect mirror (a delta): below it the float
+// evaluation of D(h) = alpha^2 / (pi (...)^2) at the peak under- and overflows (alpha 0:
+// 0 / 0), and the lobe is narrower than a float direction can resolve anyway (docs/stability.md).
+const float kGgxMirrorAlpha = 1e-7f;
 
 // Primitive kinds, as the intersection search reports them.
 const uint kPrimNone = 0u;
@@ -62,7 +66,8 @@ const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a saf
 const uint kCounterZeroPdf = 1u;        // paths ended by a zero pdf or a non-finite weight
 const uint kCounterNonFinite = 2u;      // samples dropped because they were NaN or Inf
 const uint kCounterNonFinitePixel = 3u; // the lowest pixel index with a dropped sample
-const uint kCounterCount = 4u;
+const uint kCounterLoopLimit = 4u;      // pixel passes whose loops the driver cut short (lavapipe)
+const uint kCounterCount = 5u;
 
 struct Triangle {
   vec4 p0;     // xyz: vertex 0 (world space)

@@ -33,7 +33,7 @@ TEST_CASE("film: variance and relative standard error follow the samples", "[fil
   // Pixel 0 sees luminance 0 and 2 alternately; pixel 1 a constant 1 (white light).
   for (int i = 0; i < 100; i++) {
     float v = (i % 2) ? 2.0f : 0.0f;
-    std::vector<glm::vec4> pass = {glm::vec4(v, v, v, v * v), glm::vec4(1.0f, 1.0f, 1.0f, 1.0f)};
+    std::vector<glm::vec4> pass = {glm::vec4(v, v, v, v), glm::vec4(1.0f, 1.0f, 1.0f, 1.0f)};  // w: sqrt(sum lum^2)
     film.add_pass(pass, 1);
   }
   CHECK(film.mean(0, 0).x == Approx(1.0));

@@ -1,0 +1,328 @@
+// Numerical stability at the extremes, as images on the backend under test (pt_tests: CPU,
+// pt_gpu_tests: Vulkan): furnaces of albedo 0.99 and 0.999 reach Le / (1 - rho), and the
+// article's fixed roulette (p = 1/2, section on Russian roulette, errata 3-4) has a second
+// moment that grows without bound with the path length there; radiance from 1e-20 to 1e20
+// accumulates without overflow or flush; glass of ior 1, 1.0001 and 3, and a glass sphere
+// inside a white furnace; camera rays at 89.99 degrees to a plane; GGX roughness down to 0;
+// a square light shrunk to side 1e-6 at constant power (stage4's light sampling, Eq. 5,
+// against stages 2-3, which find the light only by chance).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "common/analytic_scenes.h"
+#include "common/shaders/scene_types.h"
+#include "stage2_montecarlo/kernels.h"
+#include "stage3_importance/kernels.h"
+#include "stage4_direct_indirect/kernels.h"
+#include "tests/support/analytic_suite.h"
+#include "tests/support/lambert.h"
+#include "tests/support/test_render.h"
+
+using namespace pt;
+using namespace pt::test;
+
+namespace {
+
+// Mean over the pixels of the per-sample luminance variance the film estimated.
+double mean_sample_variance(const Film& film) {
+  double v = 0.0;
+  for (int y = 0; y < film.height(); y++)
+    for (int x = 0; x < film.width(); x++) v += film.sample_variance(x, y);
+  return v / (double(film.width()) * film.height());
+}
+
+double mean_luminance(const Film& film) {
+  double m = 0.0;
+  for (int y = 0; y < film.height(); y++)
+    for (int x = 0; x < film.width(); x++) {
+      glm::dvec3 c = film.mean(x, y);
+      m += 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    }
+  return m / (double(film.width()) * film.height());
+}
+
+// An orthographic camera at `eye` looking along the unit `dir`, half-extents xmag, ymag.
+CameraDesc orthographic_camera(glm::vec3 eye, glm::vec3 dir, glm::vec3 up, float xmag, float ymag) {
+  CameraDesc cam;
+  cam.kind = kCameraOrthographic;
+  cam.to_world = glm::inverse(glm::lookAt(eye, eye + dir, up));
+  cam.xmag = xmag, cam.ymag = ymag;
+  return cam;
+}
+
+}  // namespace
+
+TEST_CASE("stability: furnace boxes of albedo 0.99 and 0.999 reach Le / (1 - albedo) on stages 3 and 4, or "
+          "the backend says it could not", "[stability][statistical][analytic]") {
+  // With throughput roulette a path continues with probability albedo: at 0.999 the mean
+  // path has 1000 bounces, 37% of paths pass the default depth cap of 1000 (which would
+  // give 1 - 0.999^1000 = 632 instead of 1000), so the cap is raised to where what it cuts,
+  // 1000 x 0.999^20000 = 2e-6, is far below the noise.
+  // lavapipe ends a kernel's loops after 65535 iterations in all (render_pixel.glsl): 16
+  // samples of 1000 bounces over 12 triangles are far more. The image is then wrong, and
+  // the run must say so (RenderCounters::loop_limit); a CPU never does.
+  for (float albedo : {0.99f, 0.999f}) {
+    for (const StageKernels& kernels : {stage3::kernels(), stage4::kernels()}) {
+      analytic::FurnaceScene f;
+      f.albedo = albedo;
+      RenderSettings s = settings(2, 2, 64, test_seed(7000));
+      s.roulette = kRouletteThroughput;
+      s.depth_cap = 20000;
+      double want = f.emission / (1.0 - double(f.albedo));
+      INFO(kernels.name << ", albedo " << albedo << ": want " << want);
+      RenderResult probe = render_on_test_backend(kernels, analytic::make_furnace(f), s);
+      if (probe.counters.loop_limit > 0) {
+        CHECK(backend_under_test == "gpu");
+        WARN(kernels.name << ", albedo " << albedo << ": the Vulkan driver cut " << probe.counters.loop_limit
+                          << " pixel passes short (its loop limit); the image mean " << mean_luminance(probe.film)
+                          << " is not checked");
+        continue;
+      }
+      check_scene(kernels, analytic::make_furnace(f), ExpectedImage(2 * 2, glm::dvec3(want)), s);
+    }
+  }
+}
+
+TEST_CASE("stability: the article's fixed roulette at albedo 0.999: the second moment doubles with every "
+          "bounce the depth cap allows (infinite variance)", "[stability][statistical]") {
+  // In the furnace box with cosine sampling every bounce weighs rho exactly and the fixed
+  // roulette continues with p = 1/2, dividing by it: with depth cap D a sample is
+  // S_k = sum_{j<=k} (2 rho)^j with k = min(K, D - 1), K ~ Geometric(1/2). Its second
+  // moment grows by 2 rho^2 = 1.996 per bounce allowed: without a cap it is infinite, and
+  // no number of samples makes the image converge at the rate 1/sqrt(n).
+  const double rho = double(0.999f);
+  double previous = 0.0;
+  for (std::uint32_t cap : {3u, 6u, 9u}) {
+    // The capped distribution in closed form: its variance and the variance estimate's
+    // standard error (from the fourth central moment).
+    double mean = 0.0, m2 = 0.0;
+    std::vector<double> value, prob;
+    for (std::uint32_t k = 0; k < cap; k++) {
+      double s_k = (std::pow(2.0 * rho, k + 1.0) - 1.0) / (2.0 * rho - 1.0);
+      double p_k = k + 1 < cap ? std::pow(0.5, k + 1.0) : std::pow(0.5, double(k));
+      value.push_back(s_k), prob.push_back(p_k);
+      mean += p_k * s_k, m2 += p_k * s_k * s_k;
+    }
+    double var = m2 - mean * mean, mu4 = 0.0;
+    for (std::size_t i = 0; i < value.size(); i++) mu4 += prob[i] * std::pow(value[i] - mean, 4.0);
+    analytic::FurnaceScene f;
+    f.albedo = float(rho);
+    RenderSettings s = settings(16, 16, 256, test_seed(7100));
+    s.roulette = kRouletteFixed;
+    s.depth_cap = cap;
+    RenderResult r = render_on_test_backend(stage3::kernels(), analytic::make_furnace(f), s);
+    double n = 16.0 * 16.0 * 256.0;
+    double se = std::sqrt((mu4 - var * var) / n);
+    double got = mean_sample_variance(r.film);
+    INFO("depth cap " << cap << ": sample variance " << got << ", closed form " << var << " +- " << se
+                      << ", second moment " << m2);
+    CHECK(std::abs(got - var) < 5.0 * se);
+    if (previous > 0.0) CHECK(m2 / previous > std::pow(1.9, 3.0));  // ~ (2 rho^2)^3 = 7.98 per 3 bounces
+    previous = m2;
+  }
+}
+
+TEST_CASE("stability: radiance from 1e-20 to 1e20 neither overflows nor flushes to zero in the film",
+          "[stability]") {
+  // The same seed renders the same paths, so the furnace at emission E is E times the one
+  // at emission 1: mean and estimated variance must scale by E and E^2 (float rounding
+  // only), not turn infinite (squares of 1e20 overflow a float) or zero (squares of 1e-20
+  // are below the smallest float).
+  for (const StageKernels& kernels : {stage3::kernels(), stage4::kernels()}) {
+    analytic::FurnaceScene f;
+    RenderSettings s = settings(4, 4, 64, test_seed(7200));
+    s.roulette = kRouletteThroughput;
+    Film unit = render_on_test_backend(kernels, analytic::make_furnace(f), s).film;
+    double unit_mean = mean_luminance(unit), unit_var = mean_sample_variance(unit);
+    REQUIRE(unit_var > 0.0);
+    for (double e : {1e-20, 1e-10, 1e10, 1e20}) {
+      f.emission = float(e);
+      RenderResult r = render_on_test_backend(kernels, analytic::make_furnace(f), s);
+      double e_f = double(float(e));
+      INFO(kernels.name << ", emission " << e);
+      CHECK(r.counters.non_finite == 0);
+      CHECK(mean_luminance(r.film) / e_f == Approx(unit_mean).epsilon(1e-5));
+      CHECK(mean_sample_variance(r.film) / (e_f * e_f) == Approx(unit_var).epsilon(1e-4));
+      CHECK(std::isfinite(r.film.relative_standard_error()));
+      std::vector<float> rgb = r.film.mean_rgb();
+      for (float v : rgb) {
+        if (!(std::isfinite(v) && v > 0.0f)) FAIL("pixel value " << v);
+      }
+    }
+  }
+}
+
+TEST_CASE("stability: glass of ior 1 is invisible, of ior 1.0001 and 3 transmits (1 - R) / (1 + R)",
+          "[stability][statistical][analytic]") {
+  for (const StageKernels& kernels : {stage3::kernels(), stage4::kernels()}) {
+    for (float ior : {1.0f, 1.0001f, 3.0f}) {
+      INFO(kernels.name);
+      check_glass_slab(kernels, ior, test_seed(7300));
+    }
+  }
+}
+
+TEST_CASE("stability: a closed glass sphere inside a white furnace neither creates nor loses energy",
+          "[stability][statistical][analytic]") {
+  // The furnace's radiance is the same in every direction, so a lossless refracting sphere
+  // (radiance scaled by eta^2 entering and 1 / eta^2 leaving, total internal reflection
+  // inside) leaves every pixel at Le / (1 - albedo) = 2.
+  for (float ior : {1.5f, 3.0f}) {
+    for (const StageKernels& kernels : {stage3::kernels(), stage4::kernels()}) {
+      Scene scene = analytic::make_furnace({});
+      scene.add_sphere(glm::vec3(0.1f, -0.05f, -0.45f), 0.4f, scene.add_material(make_glass(glm::vec3(1.0f), ior)));
+      build_light_table(scene);
+      RenderSettings s = settings(12, 12, 128, test_seed(7400));
+      s.roulette = kRouletteThroughput;
+      INFO(kernels.name << ", ior " << ior);
+      check_scene(kernels, scene, ExpectedImage(12 * 12, glm::dvec3(2.0)), s);
+    }
+  }
+}
+
+TEST_CASE("stability: camera rays at 89.99 degrees to a diffuse plane under a uniform sky see albedo x sky",
+          "[stability][statistical][analytic]") {
+  // The rays meet the plane 0.01 degrees above it, 4 to 16 units away: a spawned ray that
+  // hit the plane again (acne) would darken the pixel.
+  const float albedo = 0.5f, sky = 1.0f;
+  const float elevation = glm::radians(0.01f);
+  Scene scene;
+  const float h = 1000.0f;
+  add_quad(scene, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, scene.add_material(make_diffuse(glm::vec3(albedo))));
+  glm::vec3 dir(0.0f, -std::sin(elevation), -std::cos(elevation));
+  scene.camera = orthographic_camera(-10.0f * dir, dir, glm::vec3(0, 1, 0), 1.0f, 1e-3f);
+  build_light_table(scene);
+  RenderSettings s = settings(8, 8, 64, test_seed(7500));
+  s.sky = glm::vec3(sky);
+  s.roulette = kRouletteThroughput;
+  check_scene(stage3::kernels(), scene, ExpectedImage(8 * 8, glm::dvec3(albedo * sky)), s);
+  // stage4 finds the sky by light sampling, cosine-weighted: every sample is albedo x sky
+  // exactly (f cos / pdf = albedo), unless its shadow ray hit the plane it left (acne).
+  RenderResult r = render_on_test_backend(stage4::kernels(), scene, s);
+  for (int y = 0; y < 8; y++)
+    for (int x = 0; x < 8; x++) {
+      INFO("stage4, pixel " << x << "," << y);
+      CHECK(r.film.mean(x, y).y == Approx(albedo * sky).epsilon(1e-5));
+    }
+}
+
+namespace {
+
+// The directional albedo at normal incidence of a white (F = 1) GGX conductor with
+// height-correlated Smith masking: at wo = n the visible normals are GGX's own (tan^2
+// theta_h = alpha^2 u / (1 - u) for uniform u), and each weighs G2 / G1 = 1 / (1 +
+// Lambda(wi)) with wi at 2 theta_h, if above the surface. Midpoint rule in u.
+double ggx_albedo_at_normal(double alpha) {
+  const int n = 200000;
+  double sum = 0.0;
+  for (int i = 0; i < n; i++) {
+    double u = (i + 0.5) / n;
+    double theta_h = std::atan(alpha * std::sqrt(u / (1.0 - u)));
+    double theta_i = 2.0 * theta_h;
+    if (theta_i >= M_PI / 2.0) continue;
+    double t = std::tan(theta_i);
+    sum += 1.0 / (1.0 + 0.5 * (std::sqrt(1.0 + alpha * alpha * t * t) - 1.0));
+  }
+  return sum / n;
+}
+
+}  // namespace
+
+TEST_CASE("stability: GGX roughness from 0 to 1: finite images of the closed-form albedo, continuous where "
+          "it becomes a perfect mirror", "[stability][statistical][analytic]") {
+  // A white GGX conductor (F0 = 1) seen from straight above under a uniform sky of 1 shows
+  // its directional albedo: 1 for a mirror, less as alpha grows (single scattering loses
+  // what the microfacets shadow). Below kGgxMirrorAlpha the conductor is a perfect mirror;
+  // just above it the GGX image must already be 1 to within 1e-4: no jump at the switch.
+  // With throughput roulette a sample is 1 (the path survives with p = G2 / G1) or 0.
+  for (float alpha : {0.0f, 0.5f * kGgxMirrorAlpha, 2.0f * kGgxMirrorAlpha, 1e-6f, 1e-4f, 1e-3f, 0.05f, 0.5f, 1.0f}) {
+    Scene scene;
+    Material metal = make_metal(glm::vec3(1.0f), 0.5f);
+    metal.kind.x = kMaterialConductor;
+    metal.params.y = alpha;
+    uint m = scene.add_material(metal);
+    add_quad(scene, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, {-100, 0, -100}, m);
+    scene.camera = orthographic_camera(glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, -1), 1.0f, 1.0f);
+    build_light_table(scene);
+    RenderSettings s = settings(4, 4, 256, test_seed(7600));
+    s.sky = glm::vec3(1.0f);
+    s.roulette = kRouletteThroughput;
+    RenderResult r = render_on_test_backend(stage3::kernels(), scene, s);
+    double mean = mean_luminance(r.film);
+    double want = alpha < kGgxMirrorAlpha ? 1.0 : ggx_albedo_at_normal(alpha);
+    double n = 4.0 * 4.0 * 256.0;
+    double tolerance = 5.0 * std::sqrt(want * (1.0 - want) / n) + 1e-4;  // Bernoulli samples
+    INFO("alpha " << alpha << ": image mean " << mean << ", closed form " << want << " +- " << tolerance);
+    CHECK(r.counters.non_finite == 0);
+    CHECK(std::abs(mean - want) <= tolerance);
+  }
+}
+
+namespace {
+
+// The floor of FloorLightScene under its square light shrunk to `side` at constant power:
+// the emission grows as 1 / side^2.
+analytic::FloorLightScene small_light(double side) {
+  analytic::FloorLightScene a;
+  a.light_half = float(0.5 * side);
+  a.emission = glm::vec3(float(4.0 / (side * side)));
+  return a;
+}
+
+// The limit of a vanishing square light of power fixed by Le A = 4: a point emitter whose
+// intensity is Le A cos(theta_light) (it emits downwards only, like the square), so the
+// floor's radiance is albedo / pi x Le A cos_l cos_f / d^2 = albedo Le A h^2 / (pi d^4).
+ExpectedImage point_limit_image(const analytic::FloorLightScene& a, int size) {
+  return expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
+    auto radiance = [](double sx, double sy, const void* data) {
+      const analytic::FloorLightScene& a = *static_cast<const analytic::FloorLightScene*>(data);
+      double h = a.light_height, x = sx * a.view_half, z = -sy * a.view_half;
+      double d2 = x * x + z * z + h * h;
+      return a.albedo / M_PI * 4.0 * h * h / (d2 * d2);
+    };
+    return glm::dvec3(rect_average(x0, y0, x1, y1, radiance, &a));
+  });
+}
+
+}  // namespace
+
+TEST_CASE("stability: a square light shrunk from side 1 to 1e-6 at constant power converges to the "
+          "point-light image on stage4", "[stability][statistical][analytic]") {
+  const int size = 10;
+  for (double side : {1.0, 1e-2, 1e-4, 1e-6}) {
+    analytic::FloorLightScene a = small_light(side);
+    // Side 1: Lambert's formula for the square; below, the point limit, which differs
+    // from the square's image by O(side^2) (1e-4 relative at side 1e-2).
+    ExpectedImage expected = side == 1.0 ? floor_light_image(a, size) : point_limit_image(a, size);
+    RenderSettings s = settings(size, size, 64, test_seed(7700));
+    s.roulette = kRouletteThroughput;
+    INFO("side " << side);
+    check_scene(stage4::kernels(), analytic::make_floor_light(a), expected, s);
+  }
+}
+
+TEST_CASE("stability: as the square light shrinks, stages 2-3 find it by chance and their variance grows "
+          "as 1 / side^2; stage4's does not", "[stability][statistical]") {
+  // The floor's radiance stays ~ the same; a BRDF-sampled ray hits a light of solid angle
+  // ~ side^2 with probability ~ side^2 and then carries ~ 1 / side^2: the per-sample
+  // variance grows as 1 / side^2. Light sampling (stage4) always reaches the light.
+  auto relative_variance = [](const StageKernels& kernels, double side) {
+    RenderSettings s = settings(8, 8, 512, test_seed(7800));
+    s.roulette = kRouletteThroughput;
+    Film film = render_on_test_backend(kernels, analytic::make_floor_light(small_light(side)), s).film;
+    double m = mean_luminance(film);
+    return mean_sample_variance(film) / (m * m);
+  };
+  double stage4_ratio = relative_variance(stage4::kernels(), 0.1) / relative_variance(stage4::kernels(), 1.0);
+  INFO("stage4: relative variance at side 0.1 / side 1 = " << stage4_ratio);
+  CHECK(stage4_ratio < 2.0);
+  for (const StageKernels& kernels : {stage2::kernels(), stage3::kernels()}) {
+    double ratio = relative_variance(kernels, 0.1) / relative_variance(kernels, 1.0);
+    INFO(kernels.name << ": relative variance at side 0.1 / side 1 = " << ratio << " (1 / side^2 = 100)");
+    CHECK(ratio > 30.0);
+  }
+}
