@@ -278,3 +278,17 @@ TEST_CASE("cli: an image larger than the machine can hold is refused with the nu
   check_error(r, 2, "GB");
   CHECK(r.err.find("40000x40000") != std::string::npos);
 }
+
+TEST_CASE("cli: a checkpoint that cannot be written is said once and the render goes on", "[reliability][checkpoint]") {
+  const std::string out = path("blocked.exr");
+  fs::create_directories(out + ".ckpt");  // a folder where the checkpoint should go
+  Run r = run(kSmall + "--spp 64 --checkpoint 0.000001 --out " + out);
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(read_image(out).spp == 64);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("cannot write checkpoint") != std::string::npos);
+  CHECK(r.err.find("goes on without checkpoints") != std::string::npos);
+  CHECK(fs::is_directory(out + ".ckpt"));  // not the program's to remove
+  fs::remove_all(out + ".ckpt");
+}
