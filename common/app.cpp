@@ -59,7 +59,14 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
     }
     if (options->checkpoint > 0.0) {
       settings.save_seconds = options->checkpoint;
-      settings.save = [&](const RenderResult& state) { save_checkpoint(checkpoint, key, stage.name, state); };
+      // A checkpoint that cannot be written (a full disk) must not end the render.
+      settings.save = [&](const RenderResult& state) {
+        try {
+          save_checkpoint(checkpoint, key, stage.name, state);
+        } catch (const Error& e) {
+          warn_once(std::string(e.what()) + "; the render goes on without checkpoints");
+        }
+      };
     }
     std::unique_ptr<Backend> backend = make_backend(*options, kernels, make_gpu);
     RenderResult result = render(*backend, scene, settings);
@@ -90,7 +97,7 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
     // A finished render needs its checkpoint no more.
     if (result.film.spp() >= settings.spp && (options->checkpoint > 0.0 || options->resume)) {
       std::error_code ignored;
-      std::filesystem::remove(checkpoint, ignored);
+      if (std::filesystem::is_regular_file(checkpoint, ignored)) std::filesystem::remove(checkpoint, ignored);
     }
     std::string tags = "[scene: " + scene_features(scene, options->sky) + "]";
     if (options->all_features) tags += " [kernel: general, --all-features]";

@@ -152,6 +152,13 @@ RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const c
     refuse(path, "is truncated (" + std::to_string(size) + " bytes)", redo);
   }
   if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0) refuse(path, "is not a checkpoint of this program's version", redo);
+  // Memory for the sums only for the size the options ask for (already checked against
+  // the machine's memory).
+  if (int(h.width) != width || int(h.height) != height) {
+    refuse(path, "is of a " + std::to_string(h.width) + "x" + std::to_string(h.height) + " image, not " +
+                     std::to_string(width) + "x" + std::to_string(height),
+           "resume with the same --width and --height");
+  }
   // The size the header promises, computed with overflow checks before anything is allocated.
   std::uint64_t values = 0, bytes = 0;
   if (__builtin_mul_overflow(std::uint64_t(h.width) * std::uint64_t(h.height), std::uint64_t(4), &values) ||
@@ -177,11 +184,6 @@ RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const c
   h.stage[sizeof h.stage - 1] = 0;
   if (std::strcmp(h.stage, stage) != 0) {
     refuse(path, std::string("is of ") + h.stage + ", not " + stage, std::string("resume it with ") + h.stage + ", or render without --resume");
-  }
-  if (int(h.width) != width || int(h.height) != height) {
-    refuse(path, "is of a " + std::to_string(h.width) + "x" + std::to_string(h.height) + " image, not " +
-                     std::to_string(width) + "x" + std::to_string(height),
-           "resume with the same --width and --height");
   }
   if (h.key != key) {
     refuse(path, "is of a different render (scene, seed, sky or --all-features, --rr, --depth-cap differ)",

@@ -63,7 +63,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
       ->check(CLI::Range(0.0, 1e9));
   app.add_option("--resume", o.resume_path,
                  "continue the checkpoint PATH (default <out>.ckpt) to --spp; same options as the saved render")
-      ->expected(0, 1);
+      ->expected(0, 1)
+      ->type_name("[PATH]");
   std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
   if (stage.has_roulette) {
     app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
