@@ -46,7 +46,7 @@ void run_error_study(const std::vector<Run>& runs, const Config& config) {
       double samples = double(config.size) * config.size * double(spp);
       double mse = e.rmse * e.rmse;
       char line[512];
-      std::snprintf(line, sizeof line, "%s,%s,%s,%s,%d,%d,%llu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%.4g\n",
+      std::snprintf(line, sizeof line, "%s,%s,%s,\"%s\",%d,%d,%llu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,\"%s\",%.4g\n",
                     run.scene.c_str(), stage_name(run.stage).c_str(), run.backend.c_str(),
                     backend.device_name().c_str(), config.size, config.size, (unsigned long long)spp, r.seconds,
                     r.kernel_seconds, samples / r.seconds, e.rmse, e.relative,

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """pt_bench's report (issue 6): from the CSV files of pt_bench (docs/results/*.csv), the
 log-log plots of relative RMSE against time (one line per stage and backend, a PNG per
 scene) and docs/results.md: the machine, the command, the time each stage and backend
@@ -43,6 +43,11 @@ def machine():
     return model, cores
 
 
+def small_file(folder, name):
+    path = os.path.join(folder, name)
+    return open(path).read().strip() if os.path.exists(path) else "unknown"
+
+
 def fit_slope(points):
     """Least-squares slope of log(error) against log(time)."""
     if len(points) < 3:
@@ -69,10 +74,10 @@ def time_to(rows, level):
     return "not reached in %.3g s" % float(rows[-1]["wall_s"])
 
 
-def fit_points(rows):
+def fit_points(rows, x="wall_s"):
     """Checkpoints for the slope: enough samples, and error well above the reference's own."""
     ref_err = float(rows[0]["reference_rel_error"] or 0.0)
-    return [(float(r["wall_s"]), float(r["rel_rmse"])) for r in rows
+    return [(float(r[x]), float(r["rel_rmse"])) for r in rows
             if int(r["spp"]) >= MIN_FIT_SPP and float(r["rel_rmse"]) > 3.0 * ref_err and float(r["rel_rmse"]) > 0]
 
 
@@ -125,6 +130,11 @@ def main():
           "Made by `%s` (bench/run.sh: `build/bin/pt_bench`, then `bench/report.py`) on %s." %
           (a.command, datetime.date.today().isoformat()), "",
           "- Machine: %s, %s cores; GPU backend: %s." % (model, cores, ", ".join(gpu_devices) or "none"),
+          "- Load average (1, 5, 15 min) before the run: %s, after: %s; the run took %s s. A load above "
+          "the core count means other jobs shared the cores: wall times are then longer than the "
+          "machine's own (the speed section also gives rates by CPU time)." %
+          (small_file(a.results, "load_before.txt"), small_file(a.results, "load_after.txt"),
+           small_file(a.results, "bench_seconds.txt")),
           "- Relative RMSE: OpenImageIO's `ImageBufAlgo::compare` RMSE over pixels and RGB channels, "
           "divided by the reference image's mean. Each checkpoint is a fresh render of 1, 2, 4, ... "
           "samples per pixel (the time a user waits for that image); efficiency is 1 / (MSE x time).",
@@ -145,14 +155,15 @@ def main():
             md += ["### %s" % scene, "",
                    "Reference: %s (its relative error %.2g). ![error against time](results/%s)" %
                    (ref["reference"], float(ref["reference_rel_error"] or 0), png), "",
-                   "| stage | backend | 10% | 3% | 1% | last: spp, rel. RMSE | samples/s | slope |",
-                   "|---|---|---|---|---|---|---|---|"]
+                   "| stage | backend | 10% | 3% | 1% | last: spp, rel. RMSE | samples/s | slope (time) | slope (spp) |",
+                   "|---|---|---|---|---|---|---|---|---|"]
             for (sc, stage, backend), rows in keyed:
-                slope = fit_slope(fit_points(rows))
-                s = "n/a" if slope is None else "%.2f%s" % (slope, "" if abs(slope + 0.5) <= SLOPE_TOLERANCE else " **(!)**")
-                md.append("| %s | %s | %s | %s | %s | %s, %.3g | %.3g | %s |" % (
+                slopes = [fit_slope(fit_points(rows, x)) for x in ("wall_s", "spp")]
+                s = ["n/a" if v is None else "%.2f%s" % (v, "" if abs(v + 0.5) <= SLOPE_TOLERANCE else " **(!)**")
+                     for v in slopes]
+                md.append("| %s | %s | %s | %s | %s | %s, %.3g | %.3g | %s | %s |" % (
                     stage, backend, time_to(rows, 0.10), time_to(rows, 0.03), time_to(rows, 0.01),
-                    rows[-1]["spp"], float(rows[-1]["rel_rmse"]), samples_per_s(rows), s))
+                    rows[-1]["spp"], float(rows[-1]["rel_rmse"]), samples_per_s(rows), s[0], s[1]))
             md.append("")
 
         md += ["## Efficiency ratios and CPU against GPU", "",
@@ -174,28 +185,36 @@ def main():
                 if c and g:
                     md.append("| %s | %s | %.3g | %.3g | %.2f |" % (scene, stage, samples_per_s(c), samples_per_s(g),
                                                                    samples_per_s(g) / samples_per_s(c)))
-        md += ["", "Slopes are least-squares fits of log(relative RMSE) against log(time) over the checkpoints "
+        md += ["", "Slopes are least-squares fits of log(relative RMSE) against log(time), and against "
+               "log(spp) (free of timing noise), over the checkpoints "
                "with at least %d spp and an error above 3x the reference's own; **(!)** marks a slope further "
                "than %.1f from -1/2 (see the notes above for why)." % (MIN_FIT_SPP, SLOPE_TOLERANCE), ""]
 
     if speed:
         md += ["## Speed: brute-force closest hit on the Cornell box", "",
-               "| method | backend | device | M rays/s | target |", "|---|---|---|---|---|"]
+               "Million rays per second by the wall clock, and by the CPU time the work got times the "
+               "core count (what the cores would do without other jobs).", "",
+               "| method | backend | device | M rays/s (wall) | M rays/s (CPU time) | target |",
+               "|---|---|---|---|---|---|"]
         for r in speed:
             t = float(r["target_mrays_per_s"])
-            md.append("| %s | %s | %s | %.2f | %s |" % (r["method"], r["backend"], r["device"],
-                                                      float(r["mrays_per_s"]), "%g" % t if t > 0 else "-"))
+            md.append("| %s | %s | %s | %.2f | %.2f | %s |" % (r["method"], r["backend"], r["device"],
+                                                             float(r["mrays_per_s"]), float(r["mrays_per_cpu_s"]),
+                                                             "%g" % t if t > 0 else "-"))
         md.append("")
 
     if special:
         md += ["## Specialised against general kernels (issue 8)", "",
                "Samples per second with the kernel specialised to the scene's features (the default) and "
-               "with `--all-features` (the general kernel), best of two alternating runs each.", "",
-               "| scene | stage | backend | specialised | general | ratio |", "|---|---|---|---|---|---|"]
+               "with `--all-features` (the general kernel), best of three alternating runs each, by the "
+               "wall clock and by CPU time. On builtin:every_feature (under a sky) the scene has every "
+               "feature, so both kernels are the same: its ratios show the measurement's own noise.", "",
+               "| scene | stage | backend | specialised | general | ratio | ratio by CPU time |",
+               "|---|---|---|---|---|---|---|"]
         for r in special:
-            md.append("| %s | %s | %s | %.3g | %.3g | %.2f |" % (
+            md.append("| %s | %s | %s | %.3g | %.3g | %.2f | %.2f |" % (
                 r["scene"], r["stage"], r["backend"], float(r["specialised_samples_per_s"]),
-                float(r["general_samples_per_s"]), float(r["ratio"])))
+                float(r["general_samples_per_s"]), float(r["ratio"]), float(r["cpu_ratio"])))
         md.append("")
 
     with open(a.markdown + ".tmp", "w") as f:

@@ -11,7 +11,13 @@ OUT=docs/results
 mkdir -p "$OUT"
 COMMAND="$BUILD_DIR/bin/pt_bench --runs bench/runs.txt --out $OUT --cache $BUILD_DIR/bench_cache ${PT_BENCH_ARGS:-}"
 echo "bench: $COMMAND" >&2
+# The load of the machine before and after: other jobs on the same cores slow every number.
+cut -d' ' -f1-3 /proc/loadavg > "$OUT/load_before.txt"
+start=$(date +%s)
 # shellcheck disable=SC2086
 $COMMAND
-python3 bench/report.py --results "$OUT" --command "./tutorial bench" --markdown docs/results.md
+cut -d' ' -f1-3 /proc/loadavg > "$OUT/load_after.txt"
+echo $(( $(date +%s) - start )) > "$OUT/bench_seconds.txt"
+# Debian's python3, which has python3-matplotlib (not one of a version manager).
+/usr/bin/python3 bench/report.py --results "$OUT" --command "./tutorial bench" --markdown docs/results.md
 echo "bench: docs/results.md and the plots in $OUT/" >&2

@@ -33,7 +33,7 @@ double soa_closest_hits(const SoaTriangles& tris, const glm::vec3* o, const glm:
       float qx = sy * e1z[i] - sz * e1y[i], qy = sz * e1x[i] - sx * e1z[i], qz = sx * e1y[i] - sy * e1x[i];
       float v = (dx * qx + dy * qy + dz * qz) * inv;
       float dist = (e2x[i] * qx + e2y[i] * qy + e2z[i] * qz) * inv;
-      bool hit = u >= 0.0f && v >= 0.0f && u + v <= 1.0f && dist > 1e-4f;
+      bool hit = (u >= 0.0f) & (v >= 0.0f) & (u + v <= 1.0f) & (dist > 1e-4f);  // no branch: &, not &&
       tt[i] = hit ? dist : 3.4e38f;
     }
     float best = 3.4e38f;
