@@ -137,7 +137,10 @@ def main():
            small_file(a.results, "bench_seconds.txt")),
           "- Relative RMSE: OpenImageIO's `ImageBufAlgo::compare` RMSE over pixels and RGB channels, "
           "divided by the reference image's mean. Each checkpoint is a fresh render of 1, 2, 4, ... "
-          "samples per pixel (the time a user waits for that image); efficiency is 1 / (MSE x time).",
+          "samples per pixel (the time a user waits for that image); efficiency is 1 / (MSE x time). "
+          "Every stage runs with the article's Russian roulette (p = 1/2, `--rr fixed`), so the stages "
+          "differ only in how they sample; images are %s pixels." %
+          (", ".join(sorted({"%sx%s" % (r["width"], r["height"]) for r in conv})) or "-"),
           "- References: the closed form for the analytic scenes (furnace, floors under square lights: "
           "Lambert's polygon formula), else a stage4 CPU render cached under a key of scene, size and "
           "kernel; its own estimated relative error is listed and bounds what can be measured.", ""]
