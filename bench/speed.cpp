@@ -17,6 +17,7 @@
 #include "bench/soa_reference.h"
 #include "common/error.h"
 #include "common/shaders/cpp_prelude.h"
+#include "common/triangle_soa.h"
 
 namespace {
 namespace kernel {  // the renderer's intersection code, as a CPU kernel compiles it
@@ -103,6 +104,9 @@ void run_speed(const Config& config) {
   kernel::triangles = scene.triangles.data();
   kernel::spheres = scene.spheres.data();
   kernel::params.counts = glm::uvec4(uint(scene.triangles.size()), uint(scene.spheres.size()), 0u, 0u);
+  pt::TriangleSoa triangle_soa(scene.triangles);  // as the CPU backend binds it (render.cpp)
+  kernel::triangle_soa = triangle_soa.data.data();
+  kernel::triangle_soa_stride = triangle_soa.stride;
   std::atomic<double> sink{0.0};  // the sums keep the work alive
   Rate renderer = rays_per_second(count, [&](std::size_t first, std::size_t n) {
     double sum = 0.0;

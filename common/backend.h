@@ -24,6 +24,8 @@ struct KernelScene {
   const PointLight* point_lights;
   uint* counters;  // kCounterCount values, updated by the kernel
   const Light* lights;
+  const float* triangle_soa = nullptr;  // the triangles as arrays (triangle_soa.h), or nullptr
+  uint triangle_soa_stride = 0;
 };
 
 // A stage's kernel compiled as C++ (common/shaders/cpu_kernel_impl.h).

@@ -15,6 +15,7 @@
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/scene.h"
+#include "common/triangle_soa.h"
 
 namespace pt {
 
@@ -37,8 +38,10 @@ class CpuBackend : public Backend {
 
   void set_scene(const Scene& scene, uint features) override {
     kernel_ = kernels_.cpu_for(features);
+    soa_ = std::make_unique<TriangleSoa>(scene.triangles);
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
-                         scene.point_lights.data(), nullptr, scene.lights.data()};
+                         scene.point_lights.data(), nullptr, scene.lights.data(),
+                         soa_->data.data(), soa_->stride};
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
@@ -69,6 +72,7 @@ class CpuBackend : public Backend {
   CpuKernel kernel_{};
   unsigned threads_;
   KernelScene scene_{};
+  std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test
 };
 
 std::uint64_t available_memory_bytes() {

@@ -13,6 +13,10 @@ inline FrameParams params;
 inline uint* counters = nullptr;  // kCounterCount event counters, updated atomically
 inline const Light* lights = nullptr;  // the light table (stage4)
 inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
+// The triangles again as a structure of arrays for the CPU's block test (intersect_cpu.h,
+// pt::TriangleSoa): nullptr means the plain loop over triangles[].
+inline const float* triangle_soa = nullptr;
+inline uint triangle_soa_stride = 0u;  // floats per array (the padded triangle count)
 #else
 layout(std430, set = 0, binding = 0) readonly buffer TriangleBuffer { Triangle triangles[]; };
 layout(std430, set = 0, binding = 1) readonly buffer SphereBuffer { Sphere spheres[]; };

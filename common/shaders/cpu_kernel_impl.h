@@ -10,6 +10,8 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   point_lights = scene.point_lights;
   counters = scene.counters;
   lights = scene.lights;
+  triangle_soa = scene.triangle_soa;
+  triangle_soa_stride = scene.triangle_soa_stride;
   params = pass;
 }
 

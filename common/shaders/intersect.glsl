@@ -76,6 +76,10 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   return Hit(t, v * inv_det, w * inv_det, index, kPrimTriangle);
 }
 
+#ifdef __cplusplus
+#include "common/shaders/intersect_cpu.h"  // hit_triangles_blocked: the CPU's SIMD filter
+#endif
+
 // Rounding error of a sphere root, in units of the numbers it was computed from: a few
 // float epsilons for the rounding of f = origin - centre, of the origin itself (the last
 // hit's rounding) and of the products below.
@@ -112,6 +116,11 @@ Hit intersect_scene(Ray ray, float t_max) {
   Hit best = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
   RayShear rs = make_ray_shear(ray.dir);
   if (has_feature(kFeatureTriangles)) {
+#ifdef __cplusplus
+    if (triangle_soa != nullptr) {
+      best = hit_triangles_blocked(ray, rs, best);  // the same hits, found faster
+    } else
+#endif
     for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
   }
   if (has_feature(kFeatureSpheres)) {
