@@ -129,7 +129,7 @@ const std::string kSmall = small();
 }  // namespace
 
 TEST_CASE("cli: Ctrl-C or kill -9 with --checkpoint, then --resume, equals the uninterrupted render bit for bit",
-          "[reliability][checkpoint][interrupt]") {
+          "[reliability][checkpoint]") {
   const std::string whole = path("whole.exr");
   Run r = run(kSmall + "--spp 3000 --out " + whole);
   REQUIRE(r.code == 0);
