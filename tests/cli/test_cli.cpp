@@ -3,6 +3,8 @@
 // output file is never clobbered by a failed run.
 #include <catch2/catch.hpp>
 
+#include "tests/support/cli_run.h"
+
 #include "tests/support/child_signals.h"
 
 #include <signal.h>
@@ -26,46 +28,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int code;
-  std::string err;
-  std::string out;
-};
+using pt_test::Run;
+using pt_test::lines;
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using pt_test::read_file;
 
-fs::path scratch() {
-  fs::path dir = fs::temp_directory_path() / ("pt_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return pt_test::scratch_dir("pt_cli"); }
 
 Run run(const std::string& args, const std::string& env = "") {
-  fs::path dir = scratch();
-  std::string cmd = env + " " PT_STAGE1_BIN " " + args + " >" + (dir / "stdout").string() + " 2>" +
-                    (dir / "stderr").string() + " </dev/null";
-  int status = std::system(cmd.c_str());
-  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stderr"), read_file(dir / "stdout")};
+  return pt_test::run_program(PT_STAGE1_BIN, args, env, scratch());
 }
 
-int lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
-
-// The contract's shape of an error: exit code, one line naming the stage, key words.
 void check_error(const Run& r, int code, const std::string& words) {
-  INFO("stderr: " << r.err);
-  CHECK(r.code == code);
-  CHECK(lines(r.err) == 1);
-  CHECK(r.err.rfind("stage1_raycast: ", 0) == 0);
-  CHECK(r.err.find(words) != std::string::npos);
+  pt_test::check_error(r, "stage1_raycast", code, words);
 }
 
 std::string write(const std::string& name, const std::string& text) {

@@ -6,6 +6,8 @@
 // Not part of the article: the machinery of the stage programs.
 #include <catch2/catch.hpp>
 
+#include "tests/support/cli_run.h"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -26,47 +28,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int code;
-  std::string err;
-  std::string out;
-};
+using pt_test::Run;
+using pt_test::lines;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return pt_test::read_file(p); }
 
-fs::path scratch() {
-  fs::path dir = fs::temp_directory_path() / ("pt_rel_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return pt_test::scratch_dir("pt_rel_cli"); }
 
 std::string path(const std::string& name) { return (scratch() / name).string(); }
 
 Run run(const std::string& args, const std::string& env = "") {
-  fs::path dir = scratch();
-  std::string cmd = env + " " PT_STAGE1_BIN " " + args + " >" + (dir / "stdout").string() + " 2>" +
-                    (dir / "stderr").string() + " </dev/null";
-  int status = std::system(cmd.c_str());
-  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stderr"), slurp(dir / "stdout")};
-}
-
-int lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
+  return pt_test::run_program(PT_STAGE1_BIN, args, env, scratch());
 }
 
 void check_error(const Run& r, int code, const std::string& words) {
-  INFO("stderr: " << r.err);
-  CHECK(r.code == code);
-  CHECK(lines(r.err) == 1);
-  CHECK(r.err.rfind("stage1_raycast: ", 0) == 0);
-  CHECK(r.err.find(words) != std::string::npos);
+  pt_test::check_error(r, "stage1_raycast", code, words);
 }
 
 struct Image {
