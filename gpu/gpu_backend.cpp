@@ -4,6 +4,7 @@
 #include "gpu/gpu_backend.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -63,6 +64,7 @@ class GpuBackend : public Backend {
   std::string device_name() const override { return context_.device_name(); }
 
   void set_scene(const Scene& scene, uint features) override {
+    one_sample_ = false;  // a new scene may fit the loop budget again
     // Only what the kernel specialised to `features` reads is uploaded.
     bool spheres = (features & kFeatureSpheres) != 0u, lights = kernels_.uses_light_table;
     upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
@@ -78,14 +80,52 @@ class GpuBackend : public Backend {
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
-    const uint32_t width = params.image.x, height = params.image.y;
     // A lost device is never used again: its results could not be trusted.
     if (lost_) throw Error(kExitNoDevice, "Vulkan device '" + context_.device_name() + "' was lost earlier and is not retried");
     passes_++;
     ensure_output(VkDeviceSize(out.size_bytes()));
+    if (!pipeline_) throw std::logic_error("run_pass before set_scene");
+    if (!one_sample_ || params.image.w <= 1) {
+      PassResult result = run_dispatches(params, out);
+      if (result.counters[kCounterLoopLimit] == 0 || params.image.w <= 1) return result;
+      // lavapipe's loop budget per invocation ran out (render_pixel.glsl): the pass is wrong.
+      // From now on every invocation renders one sample, the pass again included.
+      one_sample_ = true;
+    }
+    return run_one_sample_at_a_time(params, out);
+  }
+
+ private:
+  // The pass as image.w passes of one sample each (the same sample indices, so the same
+  // samples), added up on the host as render_pixel() adds its samples: the radiance sums,
+  // and the roots of the sums of squared luminance as the root of their squares' sum.
+  PassResult run_one_sample_at_a_time(const FrameParams& params, std::span<glm::vec4> out) {
+    std::vector<glm::dvec4> sum(out.size(), glm::dvec4(0.0));
+    PassResult result;
+    result.counters[kCounterNonFinitePixel] = kNoPixel;
+    for (uint i = 0; i < params.image.w; i++) {
+      FrameParams one = params;
+      one.image.z = params.image.z + i;
+      one.image.w = 1u;
+      PassResult part = run_dispatches(one, out);
+      for (std::size_t p = 0; p < out.size(); p++) {
+        sum[p] += glm::dvec4(glm::dvec3(out[p]), double(out[p].w) * double(out[p].w));
+      }
+      result.kernel_seconds += part.kernel_seconds;
+      for (uint c = 0; c < kCounterCount; c++) {
+        result.counters[c] = c == kCounterNonFinitePixel ? std::min(result.counters[c], part.counters[c])
+                                                         : result.counters[c] + part.counters[c];
+      }
+    }
+    for (std::size_t p = 0; p < out.size(); p++) out[p] = glm::vec4(glm::dvec3(sum[p]), std::sqrt(sum[p].w));
+    return result;
+  }
+
+  // Runs the pass `params` over the whole image in dispatches of bounded work.
+  PassResult run_dispatches(const FrameParams& params, std::span<glm::vec4> out) {
+    const uint32_t width = params.image.x, height = params.image.y;
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_,
                                             &params_,    &output_,  &counters_,     &lights_};
-    if (!pipeline_) throw std::logic_error("run_pass before set_scene");
     pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -113,7 +153,7 @@ class GpuBackend : public Backend {
     return result;
   }
 
- private:
+
   // Storage buffers never have size 0: an empty array still gets a small buffer.
   void upload(Buffer& buffer, const void* data, std::size_t bytes) {
     check_range(bytes, "the scene");
@@ -196,6 +236,7 @@ class GpuBackend : public Backend {
   VkQueryPool queries_ = VK_NULL_HANDLE;
   std::uint64_t passes_ = 0;  // passes begun on this device (PT_FAULT counts them)
   bool lost_ = false;         // VK_ERROR_DEVICE_LOST seen: the device is not used again
+  bool one_sample_ = false;   // the driver's loop budget ran out once: one sample per invocation
   Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_;
 };
 

@@ -38,6 +38,12 @@ RayShear make_ray_shear(vec3 dir) {
   return RayShear(kx, ky, kz, vec3(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0f / dir[kz]));
 }
 
+// n u / (1 - n u) for u = 2^-24, float's unit roundoff: the relative error bound of n
+// chained roundings (Higham's gamma_n).
+const float kGamma2 = 1.19209304e-07f;
+const float kGamma3 = 1.78813966e-07f;
+const float kGamma5 = 2.98023313e-07f;
+
 // Returns a hit with triangle `index` if it is nearer than `best`, else `best`.
 Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   Triangle tri = triangles[index];
@@ -67,6 +73,21 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   if (det > 0.0f && (t_scaled <= 0.0f || t_scaled > best.t * det)) return best;
   float inv_det = 1.0f / det;
   float t = t_scaled * inv_det;
+  // A t no larger than its own rounding error cannot be told from 0: its sign may be
+  // wrong (a sliver far from the ray origin), and the ray would re-hit the surface it
+  // left. The bound follows the error of each step above (floating-point error analysis
+  // of the watertight test, as in pbrt's triangle test): the sheared coordinates, the
+  // edge functions, then t_scaled. kGamma(n) = n u / (1 - n u), u = 2^-24.
+  float max_x = max(max(abs(ax), abs(bx)), abs(cx));
+  float max_y = max(max(abs(ay), abs(by)), abs(cy));
+  float max_z = max(max(abs(az), abs(bz)), abs(cz));
+  float max_e = max(max(abs(u), abs(v)), abs(w));
+  float delta_x = kGamma5 * (max_x + max_z);
+  float delta_y = kGamma5 * (max_y + max_z);
+  float delta_z = kGamma3 * max_z;
+  float delta_e = 2.0f * (kGamma2 * max_x * max_y + delta_y * max_x + delta_x * max_y);
+  float delta_t = 3.0f * (kGamma3 * max_e * max_z + delta_e * max_z + delta_z * max_e) * abs(inv_det);
+  if (t <= delta_t) return best;
   // A hit closer than the rounding of the vertices' own coordinates (relative to the ray
   // origin) cannot be told from the surface the ray left: a large triangle far from its
   // vertices has errors far above the spawn offset (pbrt-v4's deltaT plays this role).
