@@ -36,7 +36,7 @@ int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels&
     if (!options) return 0;  // --help
     install_interrupt_handlers();
     OutputFile out(options->out);  // checked now, written after the render
-    check_image_memory(options->width, options->height);
+    check_image_memory(options->width, options->height, options->resume);
     // Load: a glTF file or a built-in scene.
     Scene scene = load_scene(options->scene);
     if (!scene.point_lights.empty() && !stage.sees_point_lights) {

@@ -75,17 +75,6 @@ class CpuBackend : public Backend {
   std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test
 };
 
-std::uint64_t available_memory_bytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  std::uint64_t kb;
-  std::string unit;
-  while (meminfo >> key >> kb >> unit) {
-    if (key == "MemAvailable:") return kb * 1024;
-  }
-  return std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE));
-}
-
 void print_progress(const RenderSettings& s, std::uint64_t done, double elapsed) {
   if (s.time_budget > 0.0 || s.target_error > 0.0) {  // no fixed end: say where it stands
     std::fprintf(stderr, "\r%s: %llu spp, %.1f s elapsed%s   ", s.label, (unsigned long long)done, elapsed,
@@ -115,9 +104,22 @@ std::uint64_t pass_samples(std::uint64_t index) {
   return index >= 4 ? kMaxPassSamples : std::min(kMaxPassSamples, std::uint64_t(1) << index);
 }
 
-void check_image_memory(int width, int height, std::uint64_t bytes_per_pixel_on_device) {
-  // Film: 4 doubles per pixel; pass buffer: 4 floats per pixel; output: 3 floats.
-  const std::uint64_t host_per_pixel = 4 * sizeof(double) + 4 * sizeof(float) + 3 * sizeof(float);
+std::uint64_t available_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kb;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit) {
+    if (key == "MemAvailable:") return kb * 1024;
+  }
+  return std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE));
+}
+
+void check_image_memory(int width, int height, bool resuming) {
+  // Film: 4 doubles per pixel (twice while a checkpoint's film is read in); pass buffer: 4
+  // floats per pixel; output: 3 floats.
+  const std::uint64_t films = resuming ? 2 : 1;
+  const std::uint64_t host_per_pixel = films * 4 * sizeof(double) + 4 * sizeof(float) + 3 * sizeof(float);
   std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height), bytes = 0;
   if (pixels > (std::uint64_t(1) << 31)) {
     throw Error(kExitBadOption, "image " + std::to_string(width) + "x" + std::to_string(height) +
@@ -130,7 +132,6 @@ void check_image_memory(int width, int height, std::uint64_t bytes_per_pixel_on_
                   double(available_memory_bytes()) / 1e9);
     throw Error(kExitBadOption, line);
   }
-  (void)bytes_per_pixel_on_device;  // the GPU backend checks its own device's limits
 }
 
 void RenderCounters::add(const PassResult& pass) {

@@ -77,8 +77,13 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& settings
 
 RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& settings);
 
-// Bytes of host memory a render of this size needs (film + pass buffer), with overflow
-// checks; throws pt::Error(2) naming the numbers if the machine does not have them.
-void check_image_memory(int width, int height, std::uint64_t bytes_per_pixel_on_device = 0);
+// Bytes of host memory a render of this size needs (film + pass buffer; a resumed render
+// holds a second film, the checkpoint's, while it starts: resuming = true), with overflow
+// checks; throws pt::Error(2) naming the numbers if the machine does not have them. The
+// GPU backend checks its own device's limits.
+void check_image_memory(int width, int height, bool resuming = false);
+
+// The host memory available now (MemAvailable of /proc/meminfo, else all of it).
+std::uint64_t available_memory_bytes();
 
 }  // namespace pt

@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -14,6 +15,7 @@
 
 #include "common/checkpoint.h"
 #include "common/error.h"
+#include "common/render.h"
 #include "common/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
@@ -165,4 +167,18 @@ TEST_CASE("checkpoint: one of another render, a damaged or a truncated file is r
   CHECK(load_code(bad, key, "stage1_raycast", 8, 6, &message) == kExitBadOption);
   CHECK(message.find("not a checkpoint") != std::string::npos);
   fs::remove_all(good.parent_path());
+}
+
+TEST_CASE("checkpoint: a resumed render counts the checkpoint's film too when it checks the memory",
+          "[reliability][bounds]") {
+  // One film: 60 bytes per pixel (film 32, pass 16, output 12); resuming: 92. An image of
+  // available / 76 pixels fits the first and not the second, with 20% to spare either way.
+  const std::uint64_t pixels = pt::available_memory_bytes() / 76;
+  if (pixels > (std::uint64_t(1) << 31)) {
+    WARN("more memory than one image may use: nothing to check here");
+    return;
+  }
+  const int side = int(std::sqrt(double(pixels)));
+  CHECK_NOTHROW(pt::check_image_memory(side, side, false));
+  CHECK_THROWS_AS(pt::check_image_memory(side, side, true), pt::Error);
 }
