@@ -1,5 +1,9 @@
 // pt_bench: the stages' kernels and backends by name, and the scenes (bench.h).
+#include <algorithm>
+#include <ctime>
+#include <filesystem>
 #include <map>
+#include <thread>
 
 #include "bench/bench.h"
 #include "common/error.h"
@@ -47,6 +51,22 @@ Backend& backend_for(const std::string& stage, const std::string& kind) {
 Scene load_bench_scene(const std::string& scene) {
   bool path = scene.find('/') != std::string::npos || scene.find(".gl") != std::string::npos;
   return load_scene(path || scene.rfind("builtin:", 0) == 0 ? scene : "builtin:" + scene);
+}
+
+Rate samples_per_second(Backend& backend, const Scene& scene, const RenderSettings& s) {
+  double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
+  RenderResult r = render(backend, scene, s);
+  double cpu = double(std::clock()) / CLOCKS_PER_SEC - cpu0;
+  double samples = double(s.width) * s.height * double(s.spp);
+  return Rate{samples / r.seconds, samples / cpu * std::max(1u, std::thread::hardware_concurrency())};
+}
+
+std::ofstream open_csv(const Config& config, const std::string& name) {
+  std::filesystem::create_directories(config.out_dir);
+  std::string path = config.out_dir + "/" + name;
+  std::ofstream csv(path);
+  if (!csv) throw Error(kExitOutput, "cannot write " + path + "; check --out");
+  return csv;
 }
 
 }  // namespace pt::bench

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -40,6 +41,19 @@ Backend& backend_for(const std::string& stage, const std::string& kind);
 
 // builtin:NAME for a bare name, the path otherwise.
 Scene load_bench_scene(const std::string& scene);
+
+// A rate by the wall clock and by CPU time (all the process's threads, also lavapipe's,
+// times the cores): on a shared machine the second is the steadier measure.
+struct Rate {
+  double wall = 0.0;
+  double cpu = 0.0;
+};
+
+// Samples per second of one render of `s` (width x height x spp samples).
+Rate samples_per_second(Backend& backend, const Scene& scene, const RenderSettings& s);
+
+// The CSV file NAME in --out (its folder made), or Error(kExitOutput) naming it.
+std::ofstream open_csv(const Config& config, const std::string& name);
 
 // The scene's true image (linear RGB, row-major from the top) and where it came from:
 // the closed form for the analytic scenes, else a converged render cached on disk.

@@ -20,10 +20,7 @@ constexpr std::uint64_t kMaxSpp = std::uint64_t(1) << 20;
 }  // namespace
 
 void run_error_study(const std::vector<Run>& runs, const Config& config) {
-  std::filesystem::create_directories(config.out_dir);
-  std::string path = config.out_dir + "/convergence.csv";
-  std::ofstream csv(path);
-  if (!csv) throw Error(kExitOutput, "cannot write " + path + "; check --out");
+  std::ofstream csv = open_csv(config, "convergence.csv");
   csv << "scene,stage,backend,device,width,height,spp,wall_s,kernel_s,samples_per_s,rmse,rel_rmse,efficiency,"
          "est_rel_error,reference,reference_rel_error\n";
   std::map<std::string, Reference> references;

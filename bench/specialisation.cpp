@@ -14,31 +14,9 @@
 
 namespace pt::bench {
 
-namespace {
-
-// Samples per second by the wall clock and by the process's CPU time (all threads, also
-// lavapipe's) times the cores: on a shared machine the second is the steadier measure.
-struct Rate {
-  double wall = 0.0;
-  double cpu = 0.0;
-};
-
-Rate samples_per_second(Backend& backend, const Scene& scene, RenderSettings s) {
-  double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
-  RenderResult r = render(backend, scene, s);
-  double cpu = double(std::clock()) / CLOCKS_PER_SEC - cpu0;
-  double samples = double(s.width) * s.height * double(s.spp);
-  return Rate{samples / r.seconds, samples / cpu * std::max(1u, std::thread::hardware_concurrency())};
-}
-
-}  // namespace
-
 void run_specialisation(const std::vector<std::string>& stages, const std::vector<std::string>& backends,
                         const Config& config) {
-  std::filesystem::create_directories(config.out_dir);
-  std::string path = config.out_dir + "/specialisation.csv";
-  std::ofstream csv(path);
-  if (!csv) throw Error(kExitOutput, "cannot write " + path + "; check --out");
+  std::ofstream csv = open_csv(config, "specialisation.csv");
   csv << "scene,stage,backend,spp,specialised_samples_per_s,general_samples_per_s,ratio,"
          "specialised_per_cpu_s,general_per_cpu_s,cpu_ratio\n";
   struct Case {

@@ -40,13 +40,6 @@ double thread_cpu_seconds() {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
-// Rays per second by the wall clock, and by the CPU time the threads got (times the
-// cores): on a machine shared with other jobs the second is what the cores would do alone.
-struct Rate {
-  double wall = 0.0;
-  double cpu = 0.0;
-};
-
 // Runs work(first, count) over `count` rays split across the cores, again and again until
 // a second has passed.
 template <class F> Rate rays_per_second(std::size_t count, F work) {
@@ -80,11 +73,7 @@ Rate stage1_samples_per_second(const std::string& backend, const Scene& scene) {
   s.spp = 64;
   Backend& b = backend_for("1", backend);
   render(b, scene, s);  // warm up: the GPU compiles its pipeline
-  double cpu0 = double(std::clock()) / CLOCKS_PER_SEC;
-  RenderResult r = render(b, scene, s);
-  double cpu = double(std::clock()) / CLOCKS_PER_SEC - cpu0;
-  double samples = double(s.width) * s.height * double(s.spp);
-  return Rate{samples / r.seconds, samples / cpu * std::max(1u, std::thread::hardware_concurrency())};
+  return samples_per_second(b, scene, s);
 }
 
 }  // namespace
@@ -121,10 +110,7 @@ void run_speed(const Config& config) {
     sink.fetch_add(soa_closest_hits(soa, origins.data() + first, dirs.data() + first, n));
   });
 
-  std::filesystem::create_directories(config.out_dir);
-  std::string path = config.out_dir + "/speed.csv";
-  std::ofstream csv(path);
-  if (!csv) throw Error(kExitOutput, "cannot write " + path + "; check --out");
+  std::ofstream csv = open_csv(config, "speed.csv");
   csv << "method,backend,device,mrays_per_s,mrays_per_cpu_s,target_mrays_per_s\n";
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   auto row = [&](const char* method, const std::string& backend, const std::string& device, Rate rays, double target) {

@@ -48,7 +48,6 @@ std::vector<float> Film::mean_rgb() const {
   return rgb;
 }
 
-static double luminance(glm::dvec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 double Film::sample_variance(int x, int y) const {
   if (spp_ < 2) return 0.0;
@@ -58,17 +57,20 @@ double Film::sample_variance(int x, int y) const {
   return std::max(0.0, (s[3] - sum * sum / n) / (n - 1.0));
 }
 
+double Film::mean_luminance() const {
+  double sum = 0.0;
+  for (int y = 0; y < height_; y++)
+    for (int x = 0; x < width_; x++) sum += luminance(mean(x, y));
+  return sum / (double(width_) * double(height_));
+}
+
 double Film::relative_standard_error() const {
   if (spp_ < 2) return 0.0;
-  double mean_sum = 0.0, variance_sum = 0.0;
-  for (int y = 0; y < height_; y++) {
-    for (int x = 0; x < width_; x++) {
-      mean_sum += luminance(mean(x, y));
-      variance_sum += sample_variance(x, y) / double(spp_);
-    }
-  }
+  double variance_sum = 0.0;
+  for (int y = 0; y < height_; y++)
+    for (int x = 0; x < width_; x++) variance_sum += sample_variance(x, y) / double(spp_);
   double pixels = double(width_) * double(height_);
-  double image_mean = mean_sum / pixels;
+  double image_mean = mean_luminance();
   return image_mean > 0.0 ? std::sqrt(variance_sum) / pixels / image_mean : 0.0;
 }
 

@@ -11,6 +11,9 @@
 
 namespace pt {
 
+// Rec. 709 luminance of linear RGB, the weights render_pixel.glsl uses for the variance.
+inline double luminance(glm::dvec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
 class Film {
  public:
   Film(int width, int height);
@@ -38,6 +41,8 @@ class Film {
   std::vector<float> mean_rgb() const;
   // Estimated variance of one sample's luminance at a pixel (unbiased, needs spp >= 2).
   double sample_variance(int x, int y) const;
+  // The image's mean luminance: the mean over pixels of luminance(mean(x, y)).
+  double mean_luminance() const;
   // Estimated relative standard error of the image's mean luminance (0 if unknown).
   double relative_standard_error() const;
 

@@ -38,8 +38,7 @@ Measured measure(const StageKernels& kernels, std::uint64_t spp, std::uint32_t s
   Measured m;
   for (int y = 0; y < kSize; y++) {
     for (int x = 0; x < kSize; x++) {
-      glm::dvec3 c = r.film.mean(x, y);
-      double e = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z - kAnswer;
+      double e = pt::luminance(r.film.mean(x, y)) - kAnswer;
       sq.push_back(e * e);
       m.est_mse += r.film.sample_variance(x, y) / double(spp);
     }

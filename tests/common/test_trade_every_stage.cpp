@@ -36,13 +36,6 @@ const StageCase kStages[] = {{"stage1", stage1::kernels, 1.0},
 // the estimated error can be trusted (in the box, light sampling's is not: results.md).
 Scene half_furnace() { return analytic::make_furnace_sphere({}); }
 
-double mean_red(const Film& f) {
-  double m = 0.0;
-  for (int y = 0; y < f.height(); y++)
-    for (int x = 0; x < f.width(); x++) m += f.mean(x, y).x;
-  return m / (double(f.width()) * f.height());
-}
-
 }  // namespace
 
 TEST_CASE("trade: --target-error and --time-budget stop every stage, with a correct image of its spp",
@@ -57,7 +50,7 @@ TEST_CASE("trade: --target-error and --time-budget stop every stage, with a corr
     CHECK(r.film.relative_standard_error() <= 0.02);
     CHECK(r.film.spp() < 0xffffffffu);
     // 5 standard errors of the mean: a wrong image, not noise (the estimate is honest).
-    CHECK(std::abs(mean_red(r.film) - stage.answer) <= 5.0 * 0.02 * stage.answer + 1e-6);
+    CHECK(std::abs(r.film.mean_luminance() - stage.answer) <= 5.0 * 0.02 * stage.answer + 1e-6);
 
     RenderSettings t = settings(8, 8, 0xffffffffu, test_seed(4200));
     t.roulette = kRouletteThroughput;

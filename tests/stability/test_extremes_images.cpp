@@ -35,16 +35,6 @@ double mean_sample_variance(const Film& film) {
   return v / (double(film.width()) * film.height());
 }
 
-double mean_luminance(const Film& film) {
-  double m = 0.0;
-  for (int y = 0; y < film.height(); y++)
-    for (int x = 0; x < film.width(); x++) {
-      glm::dvec3 c = film.mean(x, y);
-      m += 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-    }
-  return m / (double(film.width()) * film.height());
-}
-
 // An orthographic camera at `eye` looking along the unit `dir`, half-extents xmag, ymag.
 CameraDesc orthographic_camera(glm::vec3 eye, glm::vec3 dir, glm::vec3 up, float xmag, float ymag) {
   CameraDesc cam;
@@ -80,7 +70,7 @@ TEST_CASE("stability: furnace boxes of albedo 0.99 and 0.999 reach Le / (1 - alb
       if (probe.counters.loop_limit > 0) {
         CHECK(backend_under_test == "gpu");
         WARN(kernels.name << ", albedo " << albedo << ": the Vulkan driver cut " << probe.counters.loop_limit
-                          << " pixel passes short (its loop limit); the image mean " << mean_luminance(probe.film)
+                          << " pixel passes short (its loop limit); the image mean " << probe.film.mean_luminance()
                           << " is not checked");
         continue;
       }
@@ -139,7 +129,7 @@ TEST_CASE("stability: radiance from 1e-20 to 1e20 neither overflows nor flushes 
     RenderSettings s = settings(4, 4, 64, test_seed(7200));
     s.roulette = kRouletteThroughput;
     Film unit = render_on_test_backend(kernels, analytic::make_furnace(f), s).film;
-    double unit_mean = mean_luminance(unit), unit_var = mean_sample_variance(unit);
+    double unit_mean = unit.mean_luminance(), unit_var = mean_sample_variance(unit);
     REQUIRE(unit_var > 0.0);
     for (double e : {1e-20, 1e-10, 1e10, 1e20}) {
       f.emission = float(e);
@@ -147,7 +137,7 @@ TEST_CASE("stability: radiance from 1e-20 to 1e20 neither overflows nor flushes 
       double e_f = double(float(e));
       INFO(kernels.name << ", emission " << e);
       CHECK(r.counters.non_finite == 0);
-      CHECK(mean_luminance(r.film) / e_f == Approx(unit_mean).epsilon(1e-5));
+      CHECK(r.film.mean_luminance() / e_f == Approx(unit_mean).epsilon(1e-5));
       CHECK(mean_sample_variance(r.film) / (e_f * e_f) == Approx(unit_var).epsilon(1e-4));
       CHECK(std::isfinite(r.film.relative_standard_error()));
       std::vector<float> rgb = r.film.mean_rgb();
@@ -254,7 +244,7 @@ TEST_CASE("stability: GGX roughness from 0 to 1: finite images of the closed-for
     s.sky = glm::vec3(1.0f);
     s.roulette = kRouletteThroughput;
     RenderResult r = render_on_test_backend(stage3::kernels(), scene, s);
-    double mean = mean_luminance(r.film);
+    double mean = r.film.mean_luminance();
     double want = alpha < kGgxMirrorAlpha ? 1.0 : ggx_albedo_at_normal(alpha);
     double n = 4.0 * 4.0 * 256.0;
     double tolerance = 5.0 * std::sqrt(want * (1.0 - want) / n) + 1e-4;  // Bernoulli samples
@@ -316,7 +306,7 @@ TEST_CASE("stability: as the square light shrinks, stages 2-3 find it by chance 
     RenderSettings s = settings(8, 8, 512, test_seed(7800));
     s.roulette = kRouletteThroughput;
     Film film = render_on_test_backend(kernels, analytic::make_floor_light(small_light(side)), s).film;
-    double m = mean_luminance(film);
+    double m = film.mean_luminance();
     return mean_sample_variance(film) / (m * m);
   };
   double stage4_ratio = relative_variance(stage4::kernels(), 0.1) / relative_variance(stage4::kernels(), 1.0);

@@ -11,7 +11,6 @@
 namespace pt::test {
 
 namespace {
-double lum(glm::dvec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // Regularised incomplete beta by continued fraction (Numerical Recipes' betacf idea),
 // for the t distribution's tail: P(|T| > t) = I_{dof/(dof+t^2)}(dof/2, 1/2).
@@ -67,7 +66,7 @@ PixelReport check_pixels(const Film& film, const ExpectedImage& expected, double
   }
   for (int y = 0; y < film.height(); y++) {
     for (int x = 0; x < film.width(); x++) {
-      double got = lum(film.mean(x, y)), want = lum(expected[std::size_t(y) * film.width() + x]);
+      double got = pt::luminance(film.mean(x, y)), want = pt::luminance(expected[std::size_t(y) * film.width() + x]);
       double se = std::sqrt(film.sample_variance(x, y) / n);
       double rounding = 1e-5 * std::abs(want) + 1e-7;
       // A rare outcome (a silhouette pixel's few hits) is seen a handful of times or never:
