@@ -1,24 +1,56 @@
 // The CPU's fast path through the brute-force triangle loop of intersect.glsl (the article's
 // raycasting step, Eq. 2, is this search for the nearest surface). C++ only: a GLSL compiler
 // never sees it. The triangles are also kept as a structure of arrays (one array per vertex
-// and axis, padded to a multiple of kSoaBlock with empty triangles; pt::TriangleSoa). Blocks
-// of kSoaBlock triangles are tested branch-free, which the compiler turns into SIMD code, by
-// the same edge functions and scaled distance as hit_triangle(), against the nearest hit
-// known at the start of the block. That test only rejects: a triangle it lets through is
-// then tested by hit_triangle() itself, in index order. Since the nearest hit only gets
-// nearer, everything it rejects hit_triangle() would have rejected too, and the hits found
-// are the same, bit for bit, as the loop over hit_triangle() alone (tests/common/
-// test_intersect_soa.cpp).
+// and axis, padded to a multiple of 8 with empty triangles; pt::TriangleSoa), and each ray
+// tests several triangles at once, one per SIMD lane (GCC's vector extensions: 8 lanes
+// where the CPU has AVX2, else 4), with exactly the operations of hit_triangle(). Every lane
+// keeps the nearest hit among its own triangles; the nearest of the lanes, the lower index
+// on a tie, is then what the loop over hit_triangle() finds, since that loop also keeps the
+// nearest hit whatever the order. Same t, barycentrics and triangle, bit for bit
+// (tests/common/test_intersect_soa.cpp). Why this layout: docs/results.md, "Speed targets".
 // No include guard of its own: intersect.glsl's guard covers it (a test that compiles the
 // kernels twice, as float and as double, undefines that one).
 
-const uint kSoaBlock = 8u;
+// `bytes` of floats side by side, and the matching lane masks (-1 or 0 per lane) and indices.
+template <int bytes> struct Lanes {
+  using Int = std::conditional_t<sizeof(float) == 4, std::int32_t, std::int64_t>;
+  typedef float F __attribute__((vector_size(bytes)));
+  typedef Int I __attribute__((vector_size(bytes)));
+  static constexpr int count = bytes / int(sizeof(float));
+  [[gnu::always_inline]] static F load(const float* p) {
+    F v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+  }
+};
 
-Hit hit_triangles_blocked(Ray ray, RayShear rs, Hit best) {
-  const uint n = params.counts.x;
-  const uint stride = triangle_soa_stride;
-  // Array (vertex v, axis k) starts at triangle_soa + (3 v + k) stride; the ray's axes
-  // are chosen once here, so the block loop below indexes nothing at run time.
+// abs() and max() as the scalar code computes them (glm's), on every lane.
+template <class F> [[gnu::always_inline]] inline F lanes_abs(F x) {
+  return x >= F{} ? x : -x;
+}
+template <class F> [[gnu::always_inline]] inline F lanes_max(F x, F y) {
+  return x < y ? y : x;
+}
+
+// Whether any lane's mask is set.
+template <class I> [[gnu::always_inline]] inline bool any_lane(I mask) {
+  std::uint64_t words[sizeof(I) / 8];
+  __builtin_memcpy(words, &mask, sizeof(I));
+  std::uint64_t any = 0;
+  for (std::uint64_t word : words) any |= word;
+  return any != 0;
+}
+
+// The nearest hit of `best` and triangles [0, n): hit_triangle() on every lane.
+template <int bytes>
+[[gnu::always_inline]] inline Hit nearest_triangle_lanes(Ray ray, RayShear rs, Hit best) {
+  using L = Lanes<bytes>;
+  using F = typename L::F;
+  using I = typename L::I;
+  const std::size_t n = params.counts.x;
+  const std::size_t stride = triangle_soa_stride;
+  // Array (vertex v, axis k) starts at triangle_soa + (3 v + k) stride; the ray's axes are
+  // chosen once here, so the loop below indexes nothing at run time.
   const float* p0x = triangle_soa + (0u + uint(rs.kx)) * stride;
   const float* p0y = triangle_soa + (0u + uint(rs.ky)) * stride;
   const float* p0z = triangle_soa + (0u + uint(rs.kz)) * stride;
@@ -28,31 +60,73 @@ Hit hit_triangles_blocked(Ray ray, RayShear rs, Hit best) {
   const float* p2x = triangle_soa + (6u + uint(rs.kx)) * stride;
   const float* p2y = triangle_soa + (6u + uint(rs.ky)) * stride;
   const float* p2z = triangle_soa + (6u + uint(rs.kz)) * stride;
-  const float ox = ray.origin[rs.kx], oy = ray.origin[rs.ky], oz = ray.origin[rs.kz];
-  const float sx = rs.s.x, sy = rs.s.y, sz = rs.s.z;
-  for (uint base = 0u; base < n; base += kSoaBlock) {
-    const float best_t = best.t;
-    int maybe[kSoaBlock];
-    for (uint k = 0u; k < kSoaBlock; k++) {
-      const uint i = base + k;
-      // The operations of hit_triangle(), in the same order: the same roundings.
-      const float az0 = p0z[i] - oz, bz0 = p1z[i] - oz, cz0 = p2z[i] - oz;
-      const float ax = (p0x[i] - ox) - sx * az0, ay = (p0y[i] - oy) - sy * az0;
-      const float bx = (p1x[i] - ox) - sx * bz0, by = (p1y[i] - oy) - sy * bz0;
-      const float cx = (p2x[i] - ox) - sx * cz0, cy = (p2y[i] - oy) - sy * cz0;
-      const float u = cx * by - cy * bx;
-      const float v = ax * cy - ay * cx;
-      const float w = bx * ay - by * ax;
-      const bool outside = ((u < 0.0f) | (v < 0.0f) | (w < 0.0f)) & ((u > 0.0f) | (v > 0.0f) | (w > 0.0f));
-      const float det = u + v + w;
-      const float t_scaled = u * (sz * az0) + v * (sz * bz0) + w * (sz * cz0);
-      const bool far_neg = (det < 0.0f) & ((t_scaled >= 0.0f) | (t_scaled < best_t * det));
-      const bool far_pos = (det > 0.0f) & ((t_scaled <= 0.0f) | (t_scaled > best_t * det));
-      maybe[k] = int(!outside & (det != 0.0f) & !far_neg & !far_pos);
-    }
-    for (uint k = 0u; k < kSoaBlock; k++) {
-      if (maybe[k] != 0) best = hit_triangle(ray, rs, base + k, best);
-    }
+  const F zero = F{};
+  const F ox = zero + ray.origin[rs.kx], oy = zero + ray.origin[rs.ky], oz = zero + ray.origin[rs.kz];
+  const F sx = zero + rs.s.x, sy = zero + rs.s.y, sz = zero + rs.s.z;
+  // Per lane: the nearest hit so far and its triangle (-1: none yet).
+  F near_t = zero + best.t, near_b1 = zero, near_b2 = zero;
+  I near_index = I{} - 1, index = I{};
+  for (int k = 0; k < L::count; k++) index[k] = k;
+  for (std::size_t base = 0u; base < n; base += std::size_t(L::count), index += L::count) {
+    // The operations of hit_triangle(), in the same order: the same roundings.
+    const F ax0 = L::load(p0x + base) - ox, ay0 = L::load(p0y + base) - oy, az0 = L::load(p0z + base) - oz;
+    const F bx0 = L::load(p1x + base) - ox, by0 = L::load(p1y + base) - oy, bz0 = L::load(p1z + base) - oz;
+    const F cx0 = L::load(p2x + base) - ox, cy0 = L::load(p2y + base) - oy, cz0 = L::load(p2z + base) - oz;
+    const F ax = ax0 - sx * az0, ay = ay0 - sy * az0;
+    const F bx = bx0 - sx * bz0, by = by0 - sy * bz0;
+    const F cx = cx0 - sx * cz0, cy = cy0 - sy * cz0;
+    const F u = cx * by - cy * bx;
+    const F v = ax * cy - ay * cx;
+    const F w = bx * ay - by * ax;
+    const I outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
+    const F det = u + v + w;
+    const F az = sz * az0, bz = sz * bz0, cz = sz * cz0;
+    const F t_scaled = u * az + v * bz + w * cz;
+    const I behind = ((det < zero) & (t_scaled >= zero)) | ((det > zero) & (t_scaled <= zero));
+    const F inv_det = 1.0f / det;
+    const F t = t_scaled * inv_det;
+    I hit = ~outside & (det != zero) & ~behind & (t < near_t);
+    if (!any_lane(hit)) continue;  // the usual case: the rounding bounds only where a lane hit
+    const F max_x = lanes_max(lanes_max(lanes_abs(ax), lanes_abs(bx)), lanes_abs(cx));
+    const F max_y = lanes_max(lanes_max(lanes_abs(ay), lanes_abs(by)), lanes_abs(cy));
+    const F max_z = lanes_max(lanes_max(lanes_abs(az), lanes_abs(bz)), lanes_abs(cz));
+    const F max_e = lanes_max(lanes_max(lanes_abs(u), lanes_abs(v)), lanes_abs(w));
+    const F delta_x = kGamma5 * (max_x + max_z);
+    const F delta_y = kGamma5 * (max_y + max_z);
+    const F delta_z = kGamma3 * max_z;
+    const F delta_e = 2.0f * (kGamma2 * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    const F delta_t = 3.0f * (kGamma3 * max_e * max_z + delta_e * max_z + delta_z * max_e) * lanes_abs(inv_det);
+    const F extent =
+        lanes_max(lanes_max(lanes_max(lanes_abs(ax0), lanes_abs(ay0)), lanes_max(lanes_abs(az0), lanes_abs(bx0))),
+                  lanes_max(lanes_max(lanes_abs(by0), lanes_abs(bz0)),
+                            lanes_max(lanes_max(lanes_abs(cx0), lanes_abs(cy0)), lanes_abs(cz0))));
+    hit &= ~(t <= delta_t) & ~(t <= 4e-7f * extent);
+    near_t = hit ? t : near_t;
+    near_b1 = hit ? v * inv_det : near_b1;
+    near_b2 = hit ? w * inv_det : near_b2;
+    near_index = hit ? index : near_index;
+  }
+  // The nearest of the lanes; of equal distances, the lower index.
+  for (int k = 0; k < L::count; k++) {
+    if (near_index[k] < 0) continue;
+    const uint i = uint(near_index[k]);
+    if (best.kind == kPrimTriangle && near_t[k] == best.t && i > best.prim) continue;
+    if (best.kind != kPrimTriangle || near_t[k] <= best.t) best = Hit(near_t[k], near_b1[k], near_b2[k], i, kPrimTriangle);
   }
   return best;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+[[gnu::target("avx2")]] inline Hit nearest_triangle_avx2(Ray ray, RayShear rs, Hit best) {
+  return nearest_triangle_lanes<32>(ray, rs, best);
+}
+#endif
+
+// The nearest hit of `best` and every triangle, as the loop over hit_triangle() finds it.
+Hit hit_triangles_blocked(Ray ray, RayShear rs, Hit best) {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return nearest_triangle_avx2(ray, rs, best);
+#endif
+  return nearest_triangle_lanes<16>(ray, rs, best);
 }

@@ -2,7 +2,8 @@
 // structure-of-arrays fast path of Eq. 2's raycasting) finds the same hits as the plain loop
 // over hit_triangle(), bit for bit: same t, barycentrics, triangle. Scenes of random
 // triangles (sizes and positions over many orders of magnitude, slivers, shared edges, empty
-// triangles, counts that are not a multiple of the block) and rays aimed at them.
+// triangles, copies of a triangle, whose hits tie, counts that are not a multiple of the
+// lane count) and rays aimed at them.
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -42,6 +43,10 @@ TEST_CASE("intersect: the CPU's block test finds the same hits as the plain loop
       if (i % 11 == 5 && i > 0) {               // shares an edge with the last triangle
         const pt::Triangle& last = s.triangles.back();
         a = glm::vec3(last.p1), b = glm::vec3(last.p0);
+      }
+      if (i % 13 == 9) {  // the same as an earlier triangle: hits at equal distances
+        const pt::Triangle& earlier = s.triangles[std::size_t(i) / 2];
+        a = glm::vec3(earlier.p0), b = glm::vec3(earlier.p1), c = glm::vec3(earlier.p2);
       }
       s.add_triangle(a, b, c, m);
     }
