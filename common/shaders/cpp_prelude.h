@@ -10,6 +10,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -21,6 +22,22 @@ namespace pt::glsl {
 using namespace glm;
 using namespace pt;  // the layouts and constants of scene_types.h
 using uint = std::uint32_t;
+
+// GLSL's abs() of floats: the sign bit cleared, as SPIR-V's FAbs does (abs(-0.0) is +0.0).
+// glm's abs is x >= 0 ? x : -x, which keeps -0.0 and which GCC compiles to a branch on the
+// sign: a ray's direction has random signs, so make_ray_shear() mispredicted about twice per
+// ray. std::abs for scalars (<cmath> also puts it in the global namespace), these overloads
+// for vectors; both are found before glm's templates.
+using std::abs;
+inline vec2 abs(vec2 v) {
+  return vec2(std::fabs(v.x), std::fabs(v.y));
+}
+inline vec3 abs(vec3 v) {
+  return vec3(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z));
+}
+inline vec4 abs(vec4 v) {
+  return vec4(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z), std::fabs(v.w));
+}
 
 // GLSL's atomic built-ins on buffer memory (the kernel's event counters).
 inline uint atomicAdd(uint& mem, uint data) {

@@ -24,9 +24,15 @@ template <int bytes> struct Lanes {
   }
 };
 
-// abs() and max() as the scalar code computes them (glm's), on every lane.
+// abs() and max() as the scalar code computes them (cpp_prelude.h's abs, glm's max), on
+// every lane.
 template <class F> [[gnu::always_inline]] inline F lanes_abs(F x) {
-  return x >= F{} ? x : -x;
+  using L = Lanes<int(sizeof(F))>;
+  typename L::I bits;
+  __builtin_memcpy(&bits, &x, sizeof x);
+  bits &= std::numeric_limits<typename L::Int>::max();  // every bit but the sign
+  __builtin_memcpy(&x, &bits, sizeof x);
+  return x;
 }
 template <class F> [[gnu::always_inline]] inline F lanes_max(F x, F y) {
   return x < y ? y : x;
@@ -61,12 +67,14 @@ template <int bytes>
   const float* p2y = triangle_soa + (6u + uint(rs.ky)) * stride;
   const float* p2z = triangle_soa + (6u + uint(rs.kz)) * stride;
   const F zero = F{};
-  const F ox = zero + ray.origin[rs.kx], oy = zero + ray.origin[rs.ky], oz = zero + ray.origin[rs.kz];
+  const float origin[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  const F ox = zero + origin[rs.kx], oy = zero + origin[rs.ky], oz = zero + origin[rs.kz];
   const F sx = zero + rs.s.x, sy = zero + rs.s.y, sz = zero + rs.s.z;
   // Per lane: the nearest hit so far and its triangle (-1: none yet).
   F near_t = zero + best.t, near_b1 = zero, near_b2 = zero;
-  I near_index = I{} - 1, index = I{};
-  for (int k = 0; k < L::count; k++) index[k] = k;
+  I near_index = I{} - 1, index;
+  static constexpr typename L::Int iota[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  __builtin_memcpy(&index, iota, sizeof index);
   for (std::size_t base = 0u; base < n; base += std::size_t(L::count), index += L::count) {
     // The operations of hit_triangle(), in the same order: the same roundings.
     const F ax0 = L::load(p0x + base) - ox, ay0 = L::load(p0y + base) - oy, az0 = L::load(p0z + base) - oz;
@@ -120,13 +128,18 @@ template <int bytes>
 [[gnu::target("avx2")]] inline Hit nearest_triangle_avx2(Ray ray, RayShear rs, Hit best) {
   return nearest_triangle_lanes<32>(ray, rs, best);
 }
+// The same 8 lanes with AVX-512's 32 vector registers instead of 16: fewer values go to memory.
+[[gnu::target("avx2,avx512f,avx512vl")]] inline Hit nearest_triangle_avx512(Ray ray, RayShear rs, Hit best) {
+  return nearest_triangle_lanes<32>(ray, rs, best);
+}
 #endif
 
 // The nearest hit of `best` and every triangle, as the loop over hit_triangle() finds it.
 Hit hit_triangles_blocked(Ray ray, RayShear rs, Hit best) {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return nearest_triangle_avx2(ray, rs, best);
+  static const int level = __builtin_cpu_supports("avx512vl") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
+  if (level == 2) return nearest_triangle_avx512(ray, rs, best);
+  if (level == 1) return nearest_triangle_avx2(ray, rs, best);
 #endif
   return nearest_triangle_lanes<16>(ray, rs, best);
 }
