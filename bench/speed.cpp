@@ -109,6 +109,9 @@ void run_speed(const Config& config) {
   Rate reference = rays_per_second(count, [&](std::size_t first, std::size_t n) {
     sink.fetch_add(soa_closest_hits(soa, origins.data() + first, dirs.data() + first, n));
   });
+  Rate reference_avx2 = rays_per_second(count, [&](std::size_t first, std::size_t n) {
+    sink.fetch_add(soa_closest_hits(soa, origins.data() + first, dirs.data() + first, n, true));
+  });
 
   std::ofstream csv = open_csv(config, "speed.csv");
   csv << "method,backend,device,mrays_per_s,mrays_per_cpu_s,target_mrays_per_s\n";
@@ -123,6 +126,7 @@ void run_speed(const Config& config) {
   std::string cpu = std::to_string(threads) + " threads";
   row("intersect_scene (renderer)", "cpu", cpu, renderer, 20.0);
   row("SoA reference loop (-O3)", "cpu", cpu, reference, 0.0);
+  row("SoA reference loop (-O3, AVX2)", "cpu", cpu, reference_avx2, 0.0);
   row("stage1_raycast samples/s", "cpu", backend_for("1", "cpu").device_name(), stage1_samples_per_second("cpu", scene), 20.0);
   try {
     Backend& gpu = backend_for("1", "gpu");
