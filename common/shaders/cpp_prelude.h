@@ -11,7 +11,10 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <limits>       // and <type_traits>: intersect_cpu.h, #included inside a namespace
+#include <type_traits>
 
 #include <glm/glm.hpp>
 
