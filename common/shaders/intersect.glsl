@@ -64,19 +64,17 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return best;
   float det = u + v + w;
   if (det == 0.0f) return best;
-  // The distance: t_scaled / det. A hit behind the origin (t_scaled and det of opposite
-  // signs) ends here; the bound below would reject it too.
+  // The distance along the ray: t_scaled / det. A hit must lie ahead of the origin.
   float az = rs.s.z * a[rs.kz];
   float bz = rs.s.z * b[rs.kz];
   float cz = rs.s.z * c[rs.kz];
   float t_scaled = u * az + v * bz + w * cz;
-  if ((det < 0.0f && t_scaled >= 0.0f) || (det > 0.0f && t_scaled <= 0.0f)) return best;
   float inv_det = 1.0f / det;
   float t = t_scaled * inv_det;
   // Only a nearer hit replaces best: of two at the same distance, the lower index stays.
   // The result is the nearest hit whatever order the triangles are tested in, which lets
   // the CPU test them in parallel (intersect_cpu.h).
-  if (!(t < best.t)) return best;
+  if (!(t > 0.0f && t < best.t)) return best;
   // A t no larger than its own rounding error cannot be told from 0: its sign may be
   // wrong (a sliver far from the ray origin), and the ray would re-hit the surface it
   // left. The bound follows the error of each step above (floating-point error analysis

@@ -24,8 +24,8 @@ template <int bytes> struct Lanes {
   }
 };
 
-// abs() and max() as the scalar code computes them (cpp_prelude.h's abs, glm's max), on
-// every lane.
+// abs(), max() and min() as the scalar code computes them (cpp_prelude.h's abs, glm's max
+// and min), on every lane.
 template <class F> [[gnu::always_inline]] inline F lanes_abs(F x) {
   using L = Lanes<int(sizeof(F))>;
   typename L::I bits;
@@ -36,6 +36,9 @@ template <class F> [[gnu::always_inline]] inline F lanes_abs(F x) {
 }
 template <class F> [[gnu::always_inline]] inline F lanes_max(F x, F y) {
   return x < y ? y : x;
+}
+template <class F> [[gnu::always_inline]] inline F lanes_min(F x, F y) {
+  return y < x ? y : x;
 }
 
 // Whether any lane's mask is set.
@@ -86,14 +89,16 @@ template <int bytes>
     const F u = cx * by - cy * bx;
     const F v = ax * cy - ay * cx;
     const F w = bx * ay - by * ax;
-    const I outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
+    // Outside: some edge function below 0 and some above. By min and max, which differ
+    // from hit_triangle()'s comparisons only when one is NaN; then t is NaN too and the
+    // triangle is missed either way.
+    const I outside = (lanes_min(lanes_min(u, v), w) < zero) & (lanes_max(lanes_max(u, v), w) > zero);
     const F det = u + v + w;
     const F az = sz * az0, bz = sz * bz0, cz = sz * cz0;
     const F t_scaled = u * az + v * bz + w * cz;
-    const I behind = ((det < zero) & (t_scaled >= zero)) | ((det > zero) & (t_scaled <= zero));
     const F inv_det = 1.0f / det;
     const F t = t_scaled * inv_det;
-    I hit = ~outside & (det != zero) & ~behind & (t < near_t);
+    I hit = ~outside & (det != zero) & (t > zero) & (t < near_t);
     if (!any_lane(hit)) continue;  // the usual case: the rounding bounds only where a lane hit
     const F max_x = lanes_max(lanes_max(lanes_abs(ax), lanes_abs(bx)), lanes_abs(cx));
     const F max_y = lanes_max(lanes_max(lanes_abs(ay), lanes_abs(by)), lanes_abs(cy));
