@@ -41,6 +41,23 @@ template <class F> [[gnu::always_inline]] inline F lanes_min(F x, F y) {
   return y < x ? y : x;
 }
 
+// f folded over the lanes (f(x, y) must be the same as f(y, x)): every lane ends up with
+// f of all of them. 8 or 4 lanes (2 for the double-precision test build).
+template <class V, class Fn> [[gnu::always_inline]] inline V lanes_fold(V x, Fn f) {
+  constexpr int n = int(sizeof(V) / sizeof(x[0]));
+  static_assert(n == 8 || n == 4 || n == 2);
+  if constexpr (n == 8) {
+    x = f(x, __builtin_shufflevector(x, x, 4, 5, 6, 7, 0, 1, 2, 3));
+    x = f(x, __builtin_shufflevector(x, x, 2, 3, 0, 1, 6, 7, 4, 5));
+    return f(x, __builtin_shufflevector(x, x, 1, 0, 3, 2, 5, 4, 7, 6));
+  } else if constexpr (n == 4) {
+    x = f(x, __builtin_shufflevector(x, x, 2, 3, 0, 1));
+    return f(x, __builtin_shufflevector(x, x, 1, 0, 3, 2));
+  } else {
+    return f(x, __builtin_shufflevector(x, x, 1, 0));
+  }
+}
+
 // Whether any lane's mask is set.
 template <class I> [[gnu::always_inline]] inline bool any_lane(I mask) {
   std::uint64_t words[sizeof(I) / 8];
@@ -119,12 +136,17 @@ template <int bytes>
     near_b2 = hit ? w * inv_det : near_b2;
     near_index = hit ? index : near_index;
   }
-  // The nearest of the lanes; of equal distances, the lower index.
+  // The nearest of the lanes; of equal distances, the lower index. Without branches: the
+  // minimum over the lanes by swapping halves, quarters, ... (lanes_fold), first of t, then
+  // of the indices at that t.
+  using Int = typename L::Int;
+  const F t = lanes_fold(near_t, [](F x, F y) { return lanes_min(x, y); });
+  const I at_t = (near_t == t) & (near_index >= 0);
+  const I index_at_t = at_t ? near_index : I{} + std::numeric_limits<Int>::max();
+  const I nearest = lanes_fold(index_at_t, [](I x, I y) { return y < x ? y : x; });
+  if (nearest[0] == std::numeric_limits<Int>::max()) return best;
   for (int k = 0; k < L::count; k++) {
-    if (near_index[k] < 0) continue;
-    const uint i = uint(near_index[k]);
-    if (best.kind == kPrimTriangle && near_t[k] == best.t && i > best.prim) continue;
-    if (best.kind != kPrimTriangle || near_t[k] <= best.t) best = Hit(near_t[k], near_b1[k], near_b2[k], i, kPrimTriangle);
+    if (near_index[k] == nearest[0]) return Hit(near_t[k], near_b1[k], near_b2[k], uint(nearest[0]), kPrimTriangle);
   }
   return best;
 }
