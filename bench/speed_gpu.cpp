@@ -26,8 +26,8 @@ constexpr uint32_t kRaysPerGroup = 64;  // both kernels' local_size_x
 class RayKernel {
  public:
   RayKernel(const gpu::VulkanContext& context, std::span<const uint32_t> spirv, uint features,
-            const gpu::Buffer* const (&buffers)[gpu::kBindingCount], uint32_t groups)
-      : context_(context), pipeline_(context, spirv, features) {
+            const gpu::Buffer* const (&buffers)[gpu::kBindingCount], uint32_t groups, uint32_t uniform_triangles = 0)
+      : context_(context), pipeline_(context, spirv, features, uniform_triangles) {
     VkDevice dev = context.device();
     pipeline_.bind_buffers(buffers);
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -105,6 +105,13 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   gpu::Buffer naive_out = storage(nullptr, count * sizeof(float));
   gpu::Buffer renderer_out = storage(nullptr, count * sizeof(glm::vec4));
   gpu::Buffer unused = storage(nullptr, 64);
+  gpu::Buffer unused_uniform(context, 64, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  // The triangles again as a uniform buffer if they fit, as gpu_backend.cpp binds them.
+  const uint32_t capacity = gpu::uniform_triangle_capacity(context);
+  const bool uniform = !scene.triangles.empty() && scene.triangles.size() <= capacity;
+  gpu::Buffer uniform_triangles(context, uniform ? (capacity + 1u) * sizeof(Triangle) : sizeof(Triangle),
+                                VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  if (uniform) uniform_triangles.write(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
   // FrameParams for intersect_scene (counts.x: triangles, image.x: rays); the naive kernel
   // reads only its first uvec4, the same two counts.
   FrameParams params{};
@@ -117,14 +124,14 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   naive_params.write(&counts, sizeof counts);
 
   const uint32_t groups = uint32_t((count + kRaysPerGroup - 1) / kRaysPerGroup);
-  const gpu::Buffer* naive_bindings[gpu::kBindingCount] = {&triangles, &unused,        &unused, &ray_buffer,
-                                                           &naive_params, &naive_out, &unused, &unused};
-  const gpu::Buffer* renderer_bindings[gpu::kBindingCount] = {&triangles, &unused,          &unused, &ray_buffer,
-                                                              &renderer_params, &renderer_out, &unused, &unused};
+  const gpu::Buffer* naive_bindings[gpu::kBindingCount] = {
+      &triangles, &unused, &unused, &ray_buffer, &naive_params, &naive_out, &unused, &unused, &unused_uniform};
+  const gpu::Buffer* renderer_bindings[gpu::kBindingCount] = {
+      &triangles, &unused, &unused, &ray_buffer, &renderer_params, &renderer_out, &unused, &unused, &uniform_triangles};
   // Specialised to the scene's features, as the renderer specialises its kernels.
   RayKernel naive(context, naive_raycast_spirv, 0u, naive_bindings, groups);
   RayKernel renderer(context, intersect_raycast_spirv, scene_feature_mask(scene, glm::vec3(0.0f)), renderer_bindings,
-                     groups);
+                     groups, uniform ? capacity : 0u);
   // Alternating, so that both see the same load from other jobs on the machine.
   while (naive.wall < seconds || renderer.wall < seconds) naive.run(), renderer.run();
 
