@@ -3,7 +3,8 @@
 // renderer's own intersect_scene() (common/shaders/intersect.glsl compiled as C++, as the
 // CPU kernels compile it), the structure-of-arrays reference loop (soa_reference.cpp), and
 // stage1_raycast (one camera ray per sample, Eq. 2) on each backend, whose samples per
-// second are rays per second with the camera and the film's work on top.
+// second are rays per second with the camera and the film's work on top. On the GPU also
+// the naive GLSL loop (the device's reference) and intersect_scene() alone (speed_gpu.cpp).
 #include <atomic>
 #include <chrono>
 #include <ctime>
@@ -15,6 +16,7 @@
 
 #include "bench/bench.h"
 #include "bench/soa_reference.h"
+#include "bench/speed_gpu.h"
 #include "common/error.h"
 #include "common/shaders/cpp_prelude.h"
 #include "common/triangle_soa.h"
@@ -129,6 +131,10 @@ void run_speed(const Config& config) {
   row("SoA reference loop (-O3, AVX2)", "cpu", cpu, reference_avx2, 0.0);
   row("stage1_raycast samples/s", "cpu", backend_for("1", "cpu").device_name(), stage1_samples_per_second("cpu", scene), 20.0);
   try {
+    GpuRayRates g = gpu_rays_per_second(scene, origins, dirs);
+    row("naive GLSL loop (reference)", "gpu", g.device, g.naive, 0.0);
+    row("intersect_scene (renderer)", "gpu", g.device, g.renderer, 10.0);
+    if (g.hit_mismatch > 1e-3) std::printf("gpu: the two kernels disagree on %.2f%% of the rays\n", 100.0 * g.hit_mismatch);
     Backend& gpu = backend_for("1", "gpu");
     row("stage1_raycast samples/s", "gpu", gpu.device_name(), stage1_samples_per_second("gpu", scene), 10.0);
   } catch (const Error& e) {

@@ -1,15 +1,24 @@
 // Compute pipeline and descriptor set (see compute_pipeline.h).
 #include "gpu/compute_pipeline.h"
 
+#include <algorithm>
+
 namespace pt::gpu {
 
 namespace {
 VkDescriptorType binding_type(uint32_t binding) {
-  return binding == kParamsBinding ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return binding == kParamsBinding || binding == kUniformTrianglesBinding ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                                                            : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 }  // namespace
 
-ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features)
+uint32_t uniform_triangle_capacity(const VulkanContext& context) {
+  VkDeviceSize range = std::min<VkDeviceSize>(context.properties().limits.maxUniformBufferRange, 65536);
+  return uint32_t(range / 64u) - 1u;  // 64: sizeof(Triangle), common/shaders/scene_types.h
+}
+
+ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
+                                 uint32_t uniform_triangles)
     : device_(context.device()) {
   try {
     // The layout of bindings.glsl: what kind of buffer sits at each binding.
@@ -38,16 +47,18 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const u
     pipe_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipe_info.stage.module = module_;
     pipe_info.stage.pName = "main";
-    // The scene's features, fixed before the driver compiles the kernel.
-    VkSpecializationMapEntry entry{0, 0, sizeof features};
-    VkSpecializationInfo specialization{1, &entry, sizeof features, &features};
+    // The scene's features and where its triangles are read, fixed before the driver
+    // compiles the kernel.
+    const uint32_t constants[2] = {features, uniform_triangles};
+    VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)}, {1, sizeof(uint32_t), sizeof(uint32_t)}};
+    VkSpecializationInfo specialization{2, entries, sizeof constants, constants};
     pipe_info.stage.pSpecializationInfo = &specialization;
     pipe_info.layout = layout_;
     check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_),
           "compiling the kernel");
 
-    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 1},
-                                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}};
+    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 2},
+                                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.maxSets = 1;
     pool_info.poolSizeCount = 2;

@@ -1,7 +1,7 @@
 // A compute pipeline made from embedded SPIR-V, with the one descriptor set that
 // common/shaders/bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
 // per-pass parameters (uniform), 5 the pass output, 6 the event counters, 7 the light
-// table (storage).
+// table (storage), 8 the triangles again as a uniform buffer (used when they fit).
 #pragma once
 
 #include <cstdint>
@@ -11,14 +11,22 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 8;
+constexpr uint32_t kBindingCount = 9;
 constexpr uint32_t kParamsBinding = 4;
+constexpr uint32_t kUniformTrianglesBinding = 8;
+
+// How many triangles binding 8 holds on this device: its largest uniform buffer, at most
+// 64 KiB (a GPU's constant cache), in 64-byte triangles, less one (the kernel declares
+// kUniformTriangles + 1); the buffer bound there is (capacity + 1) triangles long.
+uint32_t uniform_triangle_capacity(const VulkanContext& context);
 
 class ComputePipeline {
  public:
   // `features`: the value of the kernel's specialization constant 0, kSceneFeatures
-  // (common/shaders/features.glsl).
-  ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features);
+  // (common/shaders/features.glsl); `uniform_triangles`: constant 1, kUniformTriangles
+  // (common/shaders/bindings.glsl), how many triangles binding 8 holds, 0: read binding 0.
+  ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
+                  uint32_t uniform_triangles = 0);
   ~ComputePipeline();
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;

@@ -1,4 +1,5 @@
-// The Vulkan compute backend (see gpu_backend.h): the scene arrays in storage buffers,
+// The Vulkan compute backend (see gpu_backend.h): the scene arrays in storage buffers (and
+// the triangles in a uniform buffer too when they fit: bindings.glsl, triangle_at),
 // one pass = a few dispatches of 8x8 workgroups over row ranges, each short enough for a
 // desktop GPU's watchdog, timed with timestamp queries, then the output read back.
 #include "gpu/gpu_backend.h"
@@ -7,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <utility>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -68,14 +70,21 @@ class GpuBackend : public Backend {
     // Only what the kernel specialised to `features` reads is uploaded.
     bool spheres = (features & kFeatureSpheres) != 0u, lights = kernels_.uses_light_table;
     upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
+    // The triangles again as a uniform buffer if they fit (bindings.glsl: triangle_at),
+    // always the same size on a device so that one pipeline serves every scene that fits.
+    const uint32_t capacity = uniform_triangle_capacity(context_);
+    const bool uniform = !scene.triangles.empty() && scene.triangles.size() <= capacity;
+    uniform_triangles_ = Buffer(context_, uniform ? (capacity + 1u) * sizeof(Triangle) : sizeof(Triangle),
+                                VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    if (uniform) uniform_triangles_.write(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
     upload(spheres_, scene.spheres.data(), spheres ? scene.spheres.size() * sizeof(Sphere) : 0);
     upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
     upload(point_lights_, scene.point_lights.data(), lights ? scene.point_lights.size() * sizeof(PointLight) : 0);
     upload(lights_, scene.lights.data(), lights ? scene.lights.size() * sizeof(Light) : 0);
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
     // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
-    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[features];
-    if (!pipeline) pipeline = std::make_unique<ComputePipeline>(context_, kernels_.spirv, features);
+    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform}];
+    if (!pipeline) pipeline = std::make_unique<ComputePipeline>(context_, kernels_.spirv, features, uniform ? capacity : 0u);
     pipeline_ = pipeline.get();
   }
 
@@ -124,8 +133,8 @@ class GpuBackend : public Backend {
   // Runs the pass `params` over the whole image in dispatches of bounded work.
   PassResult run_dispatches(const FrameParams& params, std::span<glm::vec4> out) {
     const uint32_t width = params.image.x, height = params.image.y;
-    const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_, &materials_, &point_lights_,
-                                            &params_,    &output_,  &counters_,     &lights_};
+    const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_,   &materials_, &point_lights_,     &params_,
+                                            &output_,    &counters_, &lights_,    &uniform_triangles_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -229,7 +238,7 @@ class GpuBackend : public Backend {
 
   VulkanContext context_;
   StageKernels kernels_;
-  std::map<uint, std::unique_ptr<ComputePipeline>> pipelines_;  // by feature set
+  std::map<std::pair<uint, bool>, std::unique_ptr<ComputePipeline>> pipelines_;  // by features, uniform triangles
   ComputePipeline* pipeline_ = nullptr;                          // the current scene's
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
@@ -237,7 +246,7 @@ class GpuBackend : public Backend {
   std::uint64_t passes_ = 0;  // passes begun on this device (PT_FAULT counts them)
   bool lost_ = false;         // VK_ERROR_DEVICE_LOST seen: the device is not used again
   bool one_sample_ = false;   // the driver's loop budget ran out once: one sample per invocation
-  Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_;
+  Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_, uniform_triangles_;
 };
 
 }  // namespace

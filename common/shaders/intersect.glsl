@@ -46,7 +46,7 @@ const float kGamma5 = 2.98023313e-07f;
 
 // Returns a hit with triangle `index` if it is nearer than `best`, else `best`.
 Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
-  Triangle tri = triangles[index];
+  Triangle tri = triangle_at(index);
   vec3 a = vec3(tri.p0) - ray.origin;
   vec3 b = vec3(tri.p1) - ray.origin;
   vec3 c = vec3(tri.p2) - ray.origin;
@@ -162,7 +162,7 @@ struct Surface {
 
 Surface surface_at(Ray ray, Hit hit) {
   if (!has_feature(kFeatureSpheres) || hit.kind == kPrimTriangle) {
-    Triangle tri = triangles[hit.prim];
+    Triangle tri = triangle_at(hit.prim);
     vec3 p0 = vec3(tri.p0);
     vec3 p1 = vec3(tri.p1);
     vec3 p2 = vec3(tri.p2);
