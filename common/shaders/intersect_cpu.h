@@ -145,10 +145,18 @@ template <int bytes>
   const I index_at_t = at_t ? near_index : I{} + std::numeric_limits<Int>::max();
   const I nearest = lanes_fold(index_at_t, [](I x, I y) { return y < x ? y : x; });
   if (nearest[0] == std::numeric_limits<Int>::max()) return best;
-  for (int k = 0; k < L::count; k++) {
-    if (near_index[k] == nearest[0]) return Hit(near_t[k], near_b1[k], near_b2[k], uint(nearest[0]), kPrimTriangle);
-  }
-  return best;
+  // Its barycentrics: the bits of the one lane that holds it, the others masked to 0.
+  const I pick = near_index == nearest;
+  I b1, b2;
+  __builtin_memcpy(&b1, &near_b1, sizeof b1);
+  __builtin_memcpy(&b2, &near_b2, sizeof b2);
+  b1 = lanes_fold(b1 & pick, [](I x, I y) { return x | y; });
+  b2 = lanes_fold(b2 & pick, [](I x, I y) { return x | y; });
+  float b1_bits, b2_bits;
+  const Int b1_0 = b1[0], b2_0 = b2[0];
+  __builtin_memcpy(&b1_bits, &b1_0, sizeof b1_bits);
+  __builtin_memcpy(&b2_bits, &b2_0, sizeof b2_bits);
+  return Hit(t[0], b1_bits, b2_bits, uint(nearest[0]), kPrimTriangle);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
