@@ -119,7 +119,7 @@ void run_speed(const Config& config) {
   csv << "method,backend,device,mrays_per_s,mrays_per_cpu_s,target_mrays_per_s\n";
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   auto row = [&](const char* method, const std::string& backend, const std::string& device, Rate rays, double target) {
-    csv << method << "," << backend << ",\"" << device << "\"," << rays.wall / 1e6 << "," << rays.cpu / 1e6 << ","
+    csv << "\"" << method << "\"," << backend << ",\"" << device << "\"," << rays.wall / 1e6 << "," << rays.cpu / 1e6 << ","
         << target << "\n";
     std::printf("%-30s %-4s %-34s %6.2f M rays/s (by CPU time %6.2f)%s\n", method, backend.c_str(), device.c_str(),
                 rays.wall / 1e6, rays.cpu / 1e6,
