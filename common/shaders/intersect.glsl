@@ -102,7 +102,7 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   // origin) cannot be told from the surface the ray left: a large triangle far from its
   // vertices has errors far above the spawn offset (pbrt-v4's deltaT plays this role).
   float extent = larger(larger(larger(abs(a.x), abs(a.y)), larger(abs(a.z), abs(b.x))),
-                     larger(larger(abs(b.y), abs(b.z)), larger(larger(abs(c.x), abs(c.y)), abs(c.z))));
+                        larger(larger(abs(b.y), abs(b.z)), larger(larger(abs(c.x), abs(c.y)), abs(c.z))));
   if (t <= 4e-7f * extent) return best;
   return Hit(t, v * inv_det, w * inv_det, index, kPrimTriangle);
 }
