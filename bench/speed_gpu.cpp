@@ -107,11 +107,7 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   gpu::Buffer unused = storage(nullptr, 64);
   gpu::Buffer unused_uniform(context, 64, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   // The triangles again as a uniform buffer if they fit, as gpu_backend.cpp binds them.
-  const uint32_t capacity = gpu::uniform_triangle_capacity(context);
-  const bool uniform = !scene.triangles.empty() && scene.triangles.size() <= capacity;
-  gpu::Buffer uniform_triangles(context, uniform ? (capacity + 1u) * sizeof(Triangle) : sizeof(Triangle),
-                                VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-  if (uniform) uniform_triangles.write(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
+  gpu::UniformTriangles uniform = gpu::uniform_triangles(context, scene.triangles);
   // FrameParams for intersect_scene (counts.x: triangles, image.x: rays); the naive kernel
   // reads only its first uvec4, the same two counts.
   FrameParams params{};
@@ -127,11 +123,11 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   const gpu::Buffer* naive_bindings[gpu::kBindingCount] = {
       &triangles, &unused, &unused, &ray_buffer, &naive_params, &naive_out, &unused, &unused, &unused_uniform};
   const gpu::Buffer* renderer_bindings[gpu::kBindingCount] = {
-      &triangles, &unused, &unused, &ray_buffer, &renderer_params, &renderer_out, &unused, &unused, &uniform_triangles};
+      &triangles, &unused, &unused, &ray_buffer, &renderer_params, &renderer_out, &unused, &unused, &uniform.buffer};
   // Specialised to the scene's features, as the renderer specialises its kernels.
   RayKernel naive(context, naive_raycast_spirv, 0u, naive_bindings, groups);
   RayKernel renderer(context, intersect_raycast_spirv, scene_feature_mask(scene, glm::vec3(0.0f)), renderer_bindings,
-                     groups, uniform ? capacity : 0u);
+                     groups, uniform.constant);
   // Alternating, so that both see the same load from other jobs on the machine.
   while (naive.wall < seconds || renderer.wall < seconds) naive.run(), renderer.run();
 

@@ -12,9 +12,14 @@ VkDescriptorType binding_type(uint32_t binding) {
 }
 }  // namespace
 
-uint32_t uniform_triangle_capacity(const VulkanContext& context) {
-  VkDeviceSize range = std::min<VkDeviceSize>(context.properties().limits.maxUniformBufferRange, 65536);
-  return uint32_t(range / 64u) - 1u;  // 64: sizeof(Triangle), common/shaders/scene_types.h
+UniformTriangles uniform_triangles(const VulkanContext& context, std::span<const Triangle> triangles) {
+  const VkDeviceSize range = std::min<VkDeviceSize>(context.properties().limits.maxUniformBufferRange, 65536);
+  const uint32_t capacity = uint32_t(range / sizeof(Triangle)) - 1u;
+  const bool fits = !triangles.empty() && triangles.size() <= capacity;
+  UniformTriangles u{Buffer(context, (fits ? capacity + 1u : 1u) * sizeof(Triangle), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
+                     fits ? capacity : 0u};
+  if (fits) u.buffer.write(triangles.data(), triangles.size_bytes());
+  return u;
 }
 
 ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 
+#include "common/shaders/scene_types.h"
 #include "gpu/buffer.h"
 
 namespace pt::gpu {
@@ -15,10 +16,17 @@ constexpr uint32_t kBindingCount = 9;
 constexpr uint32_t kParamsBinding = 4;
 constexpr uint32_t kUniformTrianglesBinding = 8;
 
-// How many triangles binding 8 holds on this device: its largest uniform buffer, at most
-// 64 KiB (a GPU's constant cache), in 64-byte triangles, less one (the kernel declares
-// kUniformTriangles + 1); the buffer bound there is (capacity + 1) triangles long.
-uint32_t uniform_triangle_capacity(const VulkanContext& context);
+// The buffer for binding 8 and the value of the kernel's constant kUniformTriangles: the
+// triangles copied into a uniform buffer if they fit (then `constant` is the capacity on
+// this device: its largest uniform buffer, at most 64 KiB, a GPU's constant cache, in
+// 64-byte triangles, less one since the kernel declares kUniformTriangles + 1, and the
+// buffer is capacity + 1 triangles long, the same for every scene that fits, so that one
+// pipeline serves them all); else a one-triangle placeholder and `constant` 0.
+struct UniformTriangles {
+  Buffer buffer;
+  uint32_t constant = 0;
+};
+UniformTriangles uniform_triangles(const VulkanContext& context, std::span<const Triangle> triangles);
 
 class ComputePipeline {
  public:

@@ -70,21 +70,17 @@ class GpuBackend : public Backend {
     // Only what the kernel specialised to `features` reads is uploaded.
     bool spheres = (features & kFeatureSpheres) != 0u, lights = kernels_.uses_light_table;
     upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
-    // The triangles again as a uniform buffer if they fit (bindings.glsl: triangle_at),
-    // always the same size on a device so that one pipeline serves every scene that fits.
-    const uint32_t capacity = uniform_triangle_capacity(context_);
-    const bool uniform = !scene.triangles.empty() && scene.triangles.size() <= capacity;
-    uniform_triangles_ = Buffer(context_, uniform ? (capacity + 1u) * sizeof(Triangle) : sizeof(Triangle),
-                                VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-    if (uniform) uniform_triangles_.write(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
+    // The triangles again as a uniform buffer if they fit (bindings.glsl: triangle_at).
+    UniformTriangles uniform = uniform_triangles(context_, scene.triangles);
+    uniform_triangles_ = std::move(uniform.buffer);
     upload(spheres_, scene.spheres.data(), spheres ? scene.spheres.size() * sizeof(Sphere) : 0);
     upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
     upload(point_lights_, scene.point_lights.data(), lights ? scene.point_lights.size() * sizeof(PointLight) : 0);
     upload(lights_, scene.lights.data(), lights ? scene.lights.size() * sizeof(Light) : 0);
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
     // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
-    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform}];
-    if (!pipeline) pipeline = std::make_unique<ComputePipeline>(context_, kernels_.spirv, features, uniform ? capacity : 0u);
+    std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
+    if (!pipeline) pipeline = std::make_unique<ComputePipeline>(context_, kernels_.spirv, features, uniform.constant);
     pipeline_ = pipeline.get();
   }
 
@@ -238,7 +234,7 @@ class GpuBackend : public Backend {
 
   VulkanContext context_;
   StageKernels kernels_;
-  std::map<std::pair<uint, bool>, std::unique_ptr<ComputePipeline>> pipelines_;  // by features, uniform triangles
+  std::map<std::pair<uint, uint32_t>, std::unique_ptr<ComputePipeline>> pipelines_;  // by features, kUniformTriangles
   ComputePipeline* pipeline_ = nullptr;                          // the current scene's
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
