@@ -6,8 +6,8 @@
 #include <thread>
 
 #include "bench/bench.h"
-#include "common/error.h"
-#include "common/scene_loading.h"
+#include "common/base/error.h"
+#include "common/scene/scene_loading.h"
 #include "gpu/gpu_backend.h"
 #include "stage1_raycast/kernels.h"
 #include "stage2_montecarlo/kernels.h"

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "common/backend.h"
-#include "common/render.h"
-#include "common/scene.h"
+#include "common/render/backend.h"
+#include "common/render/render.h"
+#include "common/scene/scene.h"
 
 namespace pt::bench {
 

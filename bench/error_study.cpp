@@ -1,5 +1,5 @@
 // pt_bench: error against time (issue 6). Each run renders its scene at 1, 2, 4, ... samples
-// per pixel through the renderer's own loop (common/render.h), each checkpoint a fresh
+// per pixel through the renderer's own loop (common/render/render.h), each checkpoint a fresh
 // render of that many samples, so its time is what a user waits for that image. At each:
 // wall and kernel time, samples per second, RMSE and relative RMSE against the true image,
 // Monte Carlo efficiency 1 / (MSE x time), and the error the renderer itself estimates.
@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "bench/bench.h"
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace pt::bench {
 

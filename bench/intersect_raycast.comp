@@ -1,5 +1,5 @@
 // The speed section's GPU row for the renderer's own intersection (issue 6): intersect_scene()
-// of common/shaders/intersect.glsl, exactly as the stage kernels include it, on one camera
+// of common/kernel/intersect.glsl, exactly as the stage kernels include it, on one camera
 // ray per invocation read from a buffer, the hit written out; no camera, sampling or film.
 // Comparable with the CPU row "intersect_scene (renderer)" and with the naive loop
 // (naive_raycast.comp). Article: the raycasting step (Eq. 2), its closest-hit search. The
@@ -7,10 +7,10 @@
 // and direction); params.counts.x is the triangle count, params.image.x the ray count.
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "common/shaders/scene_types.h"
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
+#include "common/kernel/scene_types.h"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 

@@ -11,8 +11,8 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/bench.h"
-#include "common/app.h"
-#include "common/error.h"
+#include "common/app/app.h"
+#include "common/base/error.h"
 
 namespace {
 

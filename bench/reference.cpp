@@ -12,8 +12,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "bench/bench.h"
-#include "common/analytic_scenes.h"
-#include "common/error.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/base/error.h"
 #include "tests/support/lambert.h"
 
 namespace pt::bench {

@@ -10,7 +10,7 @@
 #include <fstream>
 
 #include "bench/bench.h"
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace pt::bench {
 

@@ -1,6 +1,6 @@
 // pt_bench's speed section (issue 6, "Speed targets"): rays per second of brute-force
 // closest-hit ray casting on the Cornell box. Three measurements in the same run: the
-// renderer's own intersect_scene() (common/shaders/intersect.glsl compiled as C++, as the
+// renderer's own intersect_scene() (common/kernel/intersect.glsl compiled as C++, as the
 // CPU kernels compile it), the structure-of-arrays reference loop (soa_reference.cpp), and
 // stage1_raycast (one camera ray per sample, Eq. 2) on each backend, whose samples per
 // second are rays per second with the camera and the film's work on top. On the GPU also
@@ -17,16 +17,16 @@
 #include "bench/bench.h"
 #include "bench/soa_reference.h"
 #include "bench/speed_gpu.h"
-#include "common/error.h"
-#include "common/shaders/cpp_prelude.h"
-#include "common/triangle_soa.h"
+#include "common/base/error.h"
+#include "cpu/kernel_prelude.h"
+#include "cpu/triangle_soa.h"
 
 namespace {
 namespace kernel {  // the renderer's intersection code, as a CPU kernel compiles it
 using namespace pt::glsl;
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
 }  // namespace kernel
 }  // namespace
 

@@ -10,14 +10,14 @@
 #include <glm/glm.hpp>
 
 #include "bench/bench.h"
-#include "common/scene.h"
+#include "common/scene/scene.h"
 
 namespace pt::bench {
 
 struct GpuRayRates {
   std::string device;
   Rate naive;     // naive_raycast.comp
-  Rate renderer;  // intersect_scene() of common/shaders/intersect.glsl
+  Rate renderer;  // intersect_scene() of common/kernel/intersect.glsl
   double hit_mismatch = 0.0;  // share of rays that one method hits and the other misses
 };
 

@@ -3,7 +3,7 @@
 # Sets NAME_SPIRV_HEADER to the generated header's path.
 function(pt_embed_shader NAME SOURCE)
   set(header ${CMAKE_CURRENT_BINARY_DIR}/${NAME}_spirv.h)
-  file(GLOB_RECURSE deps CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/common/shaders/*
+  file(GLOB_RECURSE deps CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/common/kernel/* ${PROJECT_SOURCE_DIR}/gpu/*.glsl
        ${CMAKE_CURRENT_SOURCE_DIR}/*.glsl ${PROJECT_SOURCE_DIR}/labs/*.glsl)
   add_custom_command(
     OUTPUT ${header}

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace pt::gpu {
 

@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "common/error.h"
-#include "common/render.h"
-#include "common/scene.h"
+#include "common/base/error.h"
+#include "common/render/render.h"
+#include "common/scene/scene.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/fault.h"
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "common/backend.h"
+#include "common/render/backend.h"
 
 namespace pt::gpu {
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "gpu/fault.h"
 
 namespace pt::gpu {

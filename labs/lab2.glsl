@@ -1,7 +1,7 @@
 // Lab 2 (docs/labs/lab2.md): the Monte Carlo estimator of the article's Eq. (3) with its
 // corrected factor 2 pi / N (erratum 1). Write the uniform hemisphere sampler and its pdf;
 // stage2 divides f * Lin * cos by that pdf. Built instead of the real functions of
-// common/shaders/sampling.glsl when you configure with -DPT_LAB=2. Graded by `ctest -L lab2`.
+// common/kernel/sampling.glsl when you configure with -DPT_LAB=2. Graded by `ctest -L lab2`.
 // Written in the GLSL/C++ subset (docs/README.md): it runs on both backends.
 
 // u: two independent numbers uniform in [0, 1). Return a unit direction (x, y, z) with

@@ -1,7 +1,7 @@
 // Lab 3 (docs/labs/lab3.md): importance sampling, the article's Eq. (4) corrected
 // (erratum 2): directions drawn in proportion to cos(theta), weighted f cos / pdf. Write
 // the cosine-weighted sampler and its pdf. Built instead of the real functions of
-// common/shaders/sampling.glsl when you configure with -DPT_LAB=3. Graded by `ctest -L lab3`.
+// common/kernel/sampling.glsl when you configure with -DPT_LAB=3. Graded by `ctest -L lab3`.
 // Written in the GLSL/C++ subset (docs/README.md): it runs on both backends.
 
 // u: two independent numbers uniform in [0, 1). Return a unit direction (x, y, z) with

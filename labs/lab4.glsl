@@ -1,7 +1,7 @@
 // Lab 4 (docs/labs/lab4.md): light sampling, the article's Eq. (5) corrected (erratum 5):
 // the direct light from an emissive triangle needs the geometry term cos_y / d^2 and the
 // area pdf 1 / A that the printed formula lacks. Write the sample of one triangle light.
-// Built instead of sample_triangle_light of common/shaders/lights.glsl when you configure
+// Built instead of sample_triangle_light of common/kernel/lights.glsl when you configure
 // with -DPT_LAB=4. Graded by `ctest -L lab4`.
 // Written in the GLSL/C++ subset (docs/README.md): it runs on both backends.
 

@@ -1,12 +1,12 @@
 // The CPU backend's copy of stage1's kernel: the same integrator.glsl, compiled as C++
 // inside its own namespace (docs/README.md, "One integrator source, two backends"), once
-// per feature variant (common/cpu_variants.h; the build makes the copies).
-#include "common/backend.h"
-#include "common/cpu_variants.h"
-#include "common/shaders/cpp_prelude.h"
+// per feature variant (cpu/cpu_variants.h; the build makes the copies).
+#include "common/render/backend.h"
+#include "cpu/cpu_variants.h"
+#include "cpu/kernel_prelude.h"
 
 namespace stage1::PT_CPU_VARIANT_NS {
 using namespace pt::glsl;
 #include "stage1_raycast/integrator.glsl"
-#include "common/shaders/cpu_kernel_impl.h"
+#include "cpu/kernel_entry.h"
 }  // namespace stage1::PT_CPU_VARIANT_NS

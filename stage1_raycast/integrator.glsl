@@ -2,12 +2,12 @@
 // алгоритм по методу бросания лучей", Eq. 2): Lout = Le. One ray per sample; the surface
 // it meets shows its emission where it emits, otherwise its base colour, as if every
 // object emitted its own colour (the article's assumption; the contract (README.md) "stage1").
-// Written in the GLSL/C++ subset of common/shaders/cpp_prelude.h: both backends run it.
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/rng.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
-#include "common/shaders/lab.glsl"
+// Written in the GLSL/C++ subset of cpu/kernel_prelude.h: both backends run it.
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/rng.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "labs/lab_hooks.glsl"
 #include "labs/lab1.glsl"
 
 // Eq. (2): the radiance leaving the first surface towards the camera is its own.
@@ -24,4 +24,4 @@ vec3 Li(Ray ray) {
   return vec3(material.base_color);
 }
 
-#include "common/shaders/render_pixel.glsl"
+#include "common/kernel/render_pixel.glsl"

@@ -1,7 +1,7 @@
 // stage1_raycast's kernel in both forms (C++ for the CPU, SPIR-V for Vulkan).
 #pragma once
 
-#include "common/backend.h"
+#include "common/render/backend.h"
 
 namespace stage1 {
 pt::StageKernels kernels();

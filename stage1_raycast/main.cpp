@@ -1,6 +1,6 @@
 // stage1_raycast: Eq. (2) of the article, Lout = Le, rendered by raycasting.
-// Parse, load, render, write: common/app.cpp run_stage(); the algorithm is integrator.glsl.
-#include "common/app.h"
+// Parse, load, render, write: common/app/app.cpp run_stage(); the algorithm is integrator.glsl.
+#include "common/app/app.h"
 #include "gpu/gpu_backend.h"
 #include "stage1_raycast/kernels.h"
 

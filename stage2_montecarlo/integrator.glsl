@@ -3,14 +3,14 @@
 // continue in ONE new direction (N = 1), drawn uniformly over the hemisphere for diffuse
 // and glossy surfaces, or the reflected/refracted direction of mirrors and glass; paths
 // end by Russian roulette. Written in the GLSL/C++ subset: both backends run this file.
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/rng.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
-#include "common/shaders/sampling.glsl"
-#include "common/shaders/bsdf.glsl"
-#include "common/shaders/spawn.glsl"
-#include "common/shaders/roulette.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/rng.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "common/kernel/sampling.glsl"
+#include "common/kernel/bsdf.glsl"
+#include "common/kernel/spawn.glsl"
+#include "common/kernel/roulette.glsl"
 
 // Eq. (3) with N = 1: Lout = Le + (2 pi / N) f Lin cos. The article prints 1/(2 pi N)
 // (erratum 1); the uniform hemisphere pdf is 1/(2 pi), so the factor is 2 pi. The tests
@@ -60,4 +60,4 @@ vec3 Li(Ray ray) {
   return L;
 }
 
-#include "common/shaders/render_pixel.glsl"
+#include "common/kernel/render_pixel.glsl"

@@ -1,7 +1,7 @@
 // stage2_montecarlo's kernel in both forms (C++ for the CPU, SPIR-V for Vulkan).
 #pragma once
 
-#include "common/backend.h"
+#include "common/render/backend.h"
 
 namespace stage2 {
 pt::StageKernels kernels();

@@ -1,8 +1,8 @@
 // stage2_montecarlo: Eq. (3) of the article, Monte Carlo path tracing with one uniformly
 // sampled direction per bounce and Russian roulette. Parse, load, render, write:
-// common/app.cpp run_stage(); the algorithm is integrator.glsl.
-#include "common/app.h"
-#include "common/shaders/scene_types.h"
+// common/app/app.cpp run_stage(); the algorithm is integrator.glsl.
+#include "common/app/app.h"
+#include "common/kernel/scene_types.h"
 #include "gpu/gpu_backend.h"
 #include "stage2_montecarlo/kernels.h"
 

@@ -1,8 +1,8 @@
 // stage3_importance: Eq. (4) of the article, path tracing with BRDF importance sampling
 // (each direction drawn in proportion to the BRDF, each contribution divided by its pdf).
-// Parse, load, render, write: common/app.cpp run_stage(); the algorithm is integrator.glsl.
-#include "common/app.h"
-#include "common/shaders/scene_types.h"
+// Parse, load, render, write: common/app/app.cpp run_stage(); the algorithm is integrator.glsl.
+#include "common/app/app.h"
+#include "common/kernel/scene_types.h"
 #include "gpu/gpu_backend.h"
 #include "stage3_importance/kernels.h"
 

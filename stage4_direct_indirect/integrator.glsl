@@ -3,15 +3,15 @@
 // direct light comes from a shadow ray to a point sampled on a light (soft shadows), the
 // indirect light from one BRDF-sampled ray (as stage3) whose hit no longer adds emission.
 // Written in the GLSL/C++ subset: both backends run this file.
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/rng.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
-#include "common/shaders/sampling.glsl"
-#include "common/shaders/bsdf.glsl"
-#include "common/shaders/spawn.glsl"
-#include "common/shaders/roulette.glsl"
-#include "common/shaders/lights.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/rng.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "common/kernel/sampling.glsl"
+#include "common/kernel/bsdf.glsl"
+#include "common/kernel/spawn.glsl"
+#include "common/kernel/roulette.glsl"
+#include "common/kernel/lights.glsl"
 
 vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path
@@ -82,4 +82,4 @@ vec3 Li(Ray ray) {
   return L;
 }
 
-#include "common/shaders/render_pixel.glsl"
+#include "common/kernel/render_pixel.glsl"

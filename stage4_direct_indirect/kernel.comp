@@ -2,6 +2,6 @@
 // Compiled to SPIR-V at build time by glslangValidator and embedded in the program.
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "common/shaders/scene_types.h"
+#include "common/kernel/scene_types.h"
 #include "stage4_direct_indirect/integrator.glsl"
-#include "common/shaders/kernel_main.glsl"
+#include "gpu/kernel_main.glsl"

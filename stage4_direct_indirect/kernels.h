@@ -1,7 +1,7 @@
 // stage4_direct_indirect's kernel in both forms (C++ for the CPU, SPIR-V for Vulkan).
 #pragma once
 
-#include "common/backend.h"
+#include "common/render/backend.h"
 
 namespace stage4 {
 pt::StageKernels kernels();

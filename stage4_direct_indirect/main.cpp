@@ -1,9 +1,9 @@
 // stage4_direct_indirect: Eq. (5) of the article, direct light by light sampling (shadow
 // rays to points sampled on the lights: soft shadows) plus indirect light by BRDF
-// sampling. Parse, load, render, write: common/app.cpp run_stage(); the algorithm is
+// sampling. Parse, load, render, write: common/app/app.cpp run_stage(); the algorithm is
 // integrator.glsl.
-#include "common/app.h"
-#include "common/shaders/scene_types.h"
+#include "common/app/app.h"
+#include "common/kernel/scene_types.h"
 #include "gpu/gpu_backend.h"
 #include "stage4_direct_indirect/kernels.h"
 

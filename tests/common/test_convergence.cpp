@@ -1,5 +1,5 @@
 // The error study's two laws, checked where the answer is known (issue 6, "Tests"): in the
-// spherical furnace (every pixel Le / (1 - albedo) = 2, common/analytic_scenes.h) the error the
+// spherical furnace (every pixel Le / (1 - albedo) = 2, common/scene/analytic_scenes.h) the error the
 // renderer estimates from its per-pixel variance matches the error measured against the
 // closed form within a factor of 2 at every checkpoint, and the RMSE of every Monte Carlo
 // stage halves as the samples quadruple (the 1/sqrt(N) law behind the bench's slope -1/2).
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <vector>
 
-#include "common/analytic_scenes.h"
+#include "common/scene/analytic_scenes.h"
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"

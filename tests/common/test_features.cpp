@@ -1,9 +1,9 @@
-// The feature set a scene uses (common/scene.h: scene_features), printed by every render's
+// The feature set a scene uses (common/scene/scene.h: scene_features), printed by every render's
 // summary line: shapes, material kinds, light kinds and the sky.
 #include <catch2/catch.hpp>
 
-#include "common/cpu_variants.h"
-#include "common/scene_loading.h"
+#include "cpu/cpu_variants.h"
+#include "common/scene/scene_loading.h"
 
 using namespace pt;
 

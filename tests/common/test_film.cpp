@@ -1,15 +1,15 @@
 // The film, the pass schedule, PNG encoding and option parsing: the machinery around the
-// integrators (common/film.h, render.h, image_output.h, options.h).
+// integrators (common/render/film.h, render.h, image_output.h, options.h).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <vector>
 
-#include "common/error.h"
-#include "common/film.h"
-#include "common/image_output.h"
-#include "common/options.h"
-#include "common/render.h"
+#include "common/base/error.h"
+#include "common/render/film.h"
+#include "common/app/image_output.h"
+#include "common/app/options.h"
+#include "common/render/render.h"
 
 using namespace pt;
 

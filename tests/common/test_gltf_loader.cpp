@@ -1,4 +1,4 @@
-// Tests of the glTF loader (the contract (README.md) "Scenes"; common/gltf_loader.cpp): each rule on a
+// Tests of the glTF loader (the contract (README.md) "Scenes"; common/scene/gltf_loader.cpp): each rule on a
 // small fixture from tests/data/gltf (written by make_fixtures.py), and each kind of
 // malformed file turned into pt::Error with exit code 3 and a one-line message.
 #include <catch2/catch.hpp>
@@ -14,8 +14,8 @@
 #include <sstream>
 #include <string>
 
-#include "common/error.h"
-#include "common/scene_loading.h"
+#include "common/base/error.h"
+#include "common/scene/scene_loading.h"
 
 namespace {
 

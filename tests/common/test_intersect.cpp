@@ -1,19 +1,19 @@
-// The intersection routines of common/shaders/intersect.glsl, compiled here as C++ as the
+// The intersection routines of common/kernel/intersect.glsl, compiled here as C++ as the
 // CPU kernels compile them: watertight triangles (rays aimed at shared edges and vertices
 // of a closed mesh never pass through it) and spheres hit from outside and inside.
 #include <catch2/catch.hpp>
 
 #include <random>
 
-#include "common/scene.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/scene.h"
+#include "cpu/kernel_prelude.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
 }  // namespace kernel
 }  // namespace
 

@@ -1,4 +1,4 @@
-// The CPU's block test of the nearest-hit search (common/shaders/intersect_cpu.h, the
+// The CPU's block test of the nearest-hit search (cpu/triangle_lanes.h, the
 // structure-of-arrays fast path of Eq. 2's raycasting) finds the same hits as the plain loop
 // over hit_triangle(), bit for bit: same t, barycentrics, triangle. Scenes of random
 // triangles (sizes and positions over many orders of magnitude, slivers, shared edges, empty
@@ -9,16 +9,16 @@
 #include <cstring>
 #include <random>
 
-#include "common/scene.h"
-#include "common/shaders/cpp_prelude.h"
-#include "common/triangle_soa.h"
+#include "common/scene/scene.h"
+#include "cpu/kernel_prelude.h"
+#include "cpu/triangle_soa.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
 }  // namespace kernel
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }

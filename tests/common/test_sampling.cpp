@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "common/scene.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/scene.h"
+#include "cpu/kernel_prelude.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 #include "tests/support/test_render.h"
@@ -16,10 +16,10 @@
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/rng.glsl"
-#include "common/shaders/sampling.glsl"
-#include "common/shaders/bsdf.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/rng.glsl"
+#include "common/kernel/sampling.glsl"
+#include "common/kernel/bsdf.glsl"
 }  // namespace kernel
 }  // namespace
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <cstring>
 
-#include "common/cpu_variants.h"
-#include "common/scene_loading.h"
+#include "cpu/cpu_variants.h"
+#include "common/scene/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"

@@ -1,5 +1,5 @@
 // Ray/sphere intersection in float with smallpt's walls, spheres of radius 1e5 (the bench's
-// builtin:smallpt; common/shaders/intersect.glsl): the distance to the wall is right to
+// builtin:smallpt; common/kernel/intersect.glsl): the distance to the wall is right to
 // the rounding of the wall's own coordinates, and a ray leaving the wall's surface does
 // not find that wall again next to where it started (the speckled image of x^2 - r^2).
 #include <catch2/catch.hpp>
@@ -8,15 +8,15 @@
 #include <cstdio>
 #include <random>
 
-#include "common/scene.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/scene.h"
+#include "cpu/kernel_prelude.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
 }  // namespace kernel
 }  // namespace
 

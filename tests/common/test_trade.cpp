@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
+#include "common/scene/analytic_scenes.h"
 #include "stage3_importance/kernels.h"
 #include "tests/support/test_render.h"
 

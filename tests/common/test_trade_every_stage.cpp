@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
+#include "common/scene/analytic_scenes.h"
 #include "stage1_raycast/kernels.h"
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"

@@ -11,8 +11,8 @@
 #include <cstring>
 #include <string>
 
-#include "common/error.h"
-#include "common/scene_loading.h"
+#include "common/base/error.h"
+#include "common/scene/scene_loading.h"
 
 namespace {
 

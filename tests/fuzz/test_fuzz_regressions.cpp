@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <string>
 
-#include "common/error.h"
-#include "common/scene_loading.h"
+#include "common/base/error.h"
+#include "common/scene/scene_loading.h"
 
 namespace fs = std::filesystem;
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "gpu/gpu_backend.h"
 #include "gpu/vulkan_context.h"
 #include "stage1_raycast/kernels.h"

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "common/scene_loading.h"
+#include "common/scene/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"

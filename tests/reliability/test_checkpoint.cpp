@@ -1,4 +1,4 @@
-// Checkpoint and resume (common/checkpoint.h), below the command line: a render resumed
+// Checkpoint and resume (common/app/checkpoint.h), below the command line: a render resumed
 // from any pass's checkpoint equals the uninterrupted render bit for bit on the CPU (the
 // article's estimator is a sum of independent samples, each with its own random numbers);
 // the render key tells renders apart; damaged and truncated files are refused, never read.
@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "common/checkpoint.h"
-#include "common/error.h"
-#include "common/render.h"
-#include "common/scene_loading.h"
+#include "common/app/checkpoint.h"
+#include "common/base/error.h"
+#include "common/render/render.h"
+#include "common/scene/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "tests/support/test_render.h"

@@ -13,8 +13,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "common/analytic_scenes.h"
-#include "common/shaders/scene_types.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/kernel/scene_types.h"
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"

@@ -10,9 +10,9 @@
 #include <cstring>
 #include <vector>
 
-#include "common/analytic_scenes.h"
-#include "common/render.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/render/render.h"
+#include "cpu/kernel_prelude.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "tests/support/test_render.h"

@@ -16,21 +16,21 @@
 #include <random>
 #include <unistd.h>
 
-#include "common/film.h"
-#include "common/image_output.h"
-#include "common/scene.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/render/film.h"
+#include "common/app/image_output.h"
+#include "common/scene/scene.h"
+#include "cpu/kernel_prelude.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/rng.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
-#include "common/shaders/sampling.glsl"
-#include "common/shaders/bsdf.glsl"
-#include "common/shaders/spawn.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/rng.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "common/kernel/sampling.glsl"
+#include "common/kernel/bsdf.glsl"
+#include "common/kernel/spawn.glsl"
 }  // namespace kernel
 using namespace pt;
 

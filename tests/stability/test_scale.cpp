@@ -1,11 +1,11 @@
 // Numerical stability at the extremes of scale: the same analytic scene scaled by 1e-4 to
 // 1e6 renders the same closed-form image (no acne, no light leaks, no black pixels): the
-// ray origins' offsets (common/shaders/spawn.glsl) and the intersection tests must work at
+// ray origins' offsets (common/kernel/spawn.glsl) and the intersection tests must work at
 // every scale, and the unit-size scene moved 1e5 from the origin, where a float's ulp is
 // 0.0078 and the 256-ulp offsets of Wächter and Binder were 2 units (docs/stability.md).
 #include <catch2/catch.hpp>
 
-#include "common/analytic_scenes.h"
+#include "common/scene/analytic_scenes.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "tests/support/analytic_suite.h"

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
-#include "common/scene_loading.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/scene/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "tests/support/analytic_images.h"
 #include "tests/support/statistics.h"

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/analytic_scenes.h"
+#include "cpu/kernel_prelude.h"
 #include "stage2_montecarlo/kernels.h"
 #include "tests/support/image_checks.h"
 #include "tests/support/test_render.h"
@@ -17,7 +17,7 @@ namespace printed {
 using namespace pt::glsl;
 #define PT_EQ3_FACTOR (1.0f / (2.0f * kPi))
 #include "stage2_montecarlo/integrator.glsl"
-#include "common/shaders/cpu_kernel_impl.h"
+#include "cpu/kernel_entry.h"
 #undef PT_EQ3_FACTOR
 }  // namespace printed
 

@@ -3,7 +3,7 @@
 // estimates (tests/support/analytic_suite.h, image_checks.h).
 #include <catch2/catch.hpp>
 
-#include "common/shaders/scene_types.h"
+#include "common/kernel/scene_types.h"
 #include "stage2_montecarlo/kernels.h"
 #include "tests/support/analytic_suite.h"
 #include "tests/support/test_render.h"

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/analytic_scenes.h"
+#include "cpu/kernel_prelude.h"
 #include "stage3_importance/kernels.h"
 #include "tests/support/image_checks.h"
 #include "tests/support/test_render.h"
@@ -15,7 +15,7 @@ namespace eq4_printed {
 using namespace pt::glsl;
 #define PT_EQ4_PRINTED
 #include "stage3_importance/integrator.glsl"
-#include "common/shaders/cpu_kernel_impl.h"
+#include "cpu/kernel_entry.h"
 #undef PT_EQ4_PRINTED
 }  // namespace eq4_printed
 }  // namespace

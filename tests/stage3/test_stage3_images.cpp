@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
-#include "common/shaders/scene_types.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/kernel/scene_types.h"
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"
 #include "tests/support/analytic_suite.h"

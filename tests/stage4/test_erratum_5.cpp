@@ -3,8 +3,8 @@
 // a square light, which the corrected estimator passes (test_stage4_images.cpp).
 #include <catch2/catch.hpp>
 
-#include "common/analytic_scenes.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/analytic_scenes.h"
+#include "cpu/kernel_prelude.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "tests/support/image_checks.h"
 #include "tests/support/analytic_suite.h"
@@ -15,7 +15,7 @@ namespace eq5_printed {
 using namespace pt::glsl;
 #define PT_EQ5_PRINTED
 #include "stage4_direct_indirect/integrator.glsl"
-#include "common/shaders/cpu_kernel_impl.h"
+#include "cpu/kernel_entry.h"
 #undef PT_EQ5_PRINTED
 }  // namespace eq5_printed
 }  // namespace

@@ -1,25 +1,25 @@
-// Light sampling (common/shaders/lights.glsl), compiled as the CPU kernels compile it:
+// Light sampling (common/kernel/lights.glsl), compiled as the CPU kernels compile it:
 // the mean of 1 / pdf over samples reproduces each light's subtended solid angle, and the
 // pick probabilities follow the lights' power.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
-#include "common/scene.h"
-#include "common/shaders/cpp_prelude.h"
+#include "common/scene/scene.h"
+#include "cpu/kernel_prelude.h"
 #include "tests/support/test_render.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
 using namespace pt::glsl;
-#include "common/shaders/bindings.glsl"
-#include "common/shaders/rng.glsl"
-#include "common/shaders/camera.glsl"
-#include "common/shaders/intersect.glsl"
-#include "common/shaders/sampling.glsl"
-#include "common/shaders/bsdf.glsl"
-#include "common/shaders/spawn.glsl"
-#include "common/shaders/lights.glsl"
+#include "common/kernel/bindings.glsl"
+#include "common/kernel/rng.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "common/kernel/sampling.glsl"
+#include "common/kernel/bsdf.glsl"
+#include "common/kernel/spawn.glsl"
+#include "common/kernel/lights.glsl"
 }  // namespace kernel
 }  // namespace
 

@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
-#include "common/scene_loading.h"
-#include "common/shaders/scene_types.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/scene/scene_loading.h"
+#include "common/kernel/scene_types.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "tests/support/analytic_suite.h"

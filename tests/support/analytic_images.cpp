@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
+#include "common/scene/analytic_scenes.h"
 #include "tests/support/coverage.h"
 
 namespace pt::test {

@@ -1,4 +1,4 @@
-// The closed-form images of the built-in analytic scenes (common/analytic_scenes.h): for
+// The closed-form images of the built-in analytic scenes (common/scene/analytic_scenes.h): for
 // each pixel the fraction of its area the shape covers, as the camera sees it.
 #pragma once
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "common/analytic_scenes.h"
-#include "common/shaders/scene_types.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/kernel/scene_types.h"
 #include "tests/support/analytic_images.h"
 #include "tests/support/lambert.h"
 #include "tests/support/test_render.h"

@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "common/analytic_scenes.h"
-#include "common/backend.h"
-#include "common/render.h"
+#include "common/scene/analytic_scenes.h"
+#include "common/render/backend.h"
+#include "common/render/render.h"
 #include "tests/support/image_checks.h"
 
 namespace pt::test {

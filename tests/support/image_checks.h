@@ -9,10 +9,10 @@
 
 #include <glm/glm.hpp>
 
-#include "common/backend.h"
-#include "common/film.h"
-#include "common/render.h"
-#include "common/scene.h"
+#include "common/render/backend.h"
+#include "common/render/film.h"
+#include "common/render/render.h"
+#include "common/scene/scene.h"
 
 namespace pt::test {
 

@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "common/backend.h"
-#include "common/render.h"
-#include "common/scene.h"
+#include "common/render/backend.h"
+#include "common/render/render.h"
+#include "common/scene/scene.h"
 
 namespace pt::test {
 

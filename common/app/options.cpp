@@ -1,0 +1,95 @@
+// The command line of the contract (README.md), parsed with CLI11 (see options.h).
+#include "common/app/options.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "common/base/error.h"
+#include "common/scene/scene_loading.h"
+#include "common/kernel/scene_types.h"
+
+namespace pt {
+
+glm::vec3 parse_rgb(const std::string& text, const std::string& option) {
+  std::istringstream in(text);
+  glm::vec3 v;
+  char comma1 = 0, comma2 = 0;
+  in >> v.x >> comma1 >> v.y >> comma2 >> v.z;
+  bool ok = !in.fail() && in.peek() == EOF && comma1 == ',' && comma2 == ',';
+  for (int c = 0; c < 3 && ok; c++) ok = std::isfinite(v[c]) && v[c] >= 0.0f;
+  if (!ok) {
+    throw Error(kExitBadOption, option + " '" + text + "': expected three non-negative numbers R,G,B, e.g. " +
+                                    option + " 0.5,0.5,0.5");
+  }
+  return v;
+}
+
+std::optional<Options> parse_options(int argc, char** argv, const StageInfo& stage) {
+  Options o;
+  o.spp = stage.default_spp;
+  o.out = std::string("out/") + stage.name + ".png";
+  std::string sky = "0,0,0";
+
+  std::string footer = "\nBuilt-in scenes (--scene builtin:NAME):\n";
+  for (const BuiltinInfo& b : builtin_scenes()) footer += "  " + b.name + std::string(17 - std::min<size_t>(16, b.name.size()), ' ') + b.description + "\n";
+  CLI::App app(std::string(stage.name) + ": " + stage.summary, stage.name);
+  app.footer(footer);
+  app.get_formatter()->column_width(30);
+  app.add_option("--scene", o.scene, "glTF 2.0 file (.gltf, .glb) or builtin:NAME")->capture_default_str();
+  app.add_option("--width", o.width, "image width in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
+  app.add_option("--height", o.height, "image height in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
+  app.add_option("--spp", o.spp, "samples per pixel")->capture_default_str()->check(CLI::Range(std::uint64_t(1), std::uint64_t(0xffffffffu)));
+  app.add_option("--seed", o.seed, "random seed: same seed, options and backend give the same image")->capture_default_str();
+  app.add_option("--backend", o.backend, "auto (gpu if a Vulkan device exists, else cpu), cpu or gpu")
+      ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
+  app.add_option("--device", o.device, "Vulkan device: index or part of its name (env PT_VULKAN_DEVICE)");
+  app.add_option("--out", o.out, "output image: .exr (linear float), .png (8-bit sRGB) or .hdr")->capture_default_str();
+  app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
+  app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
+  app.add_option("--threads", o.threads, "CPU backend threads (0 = all cores)")->capture_default_str();
+  app.add_option("--time-budget", o.time_budget,
+                 "render in passes until SECONDS are spent (--spp, if given, still caps the samples)")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--target-error", o.target_error,
+                 "stop once the estimated relative standard error of the image mean is below E")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--all-features", o.all_features,
+               "run the general kernel instead of the one specialised to the scene's features");
+  app.add_option("--checkpoint", o.checkpoint,
+                 "save the running render to <out>.ckpt every SECONDS (and at Ctrl-C); removed when it ends")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--resume", o.resume_path,
+                 "continue the checkpoint PATH (default <out>.ckpt) to --spp; same options as the saved render")
+      ->expected(0, 1)
+      ->type_name("[PATH]");
+  std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
+  if (stage.has_roulette) {
+    app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
+        ->capture_default_str()->check(CLI::IsMember({"fixed", "throughput"}));
+    app.add_option("--depth-cap", o.depth_cap, "bounces after which a path is stopped and counted (a safety net)")
+        ->capture_default_str()->check(CLI::Range(1u, 1000000u));
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::printf("%s", app.help().c_str());
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
+  }
+  o.sky = parse_rgb(sky, "--sky");
+  o.resume = app.count("--resume") > 0;
+  if (o.resume && o.resume_path.empty()) o.resume_path = o.out + ".ckpt";
+  // With a time or error target and no --spp, the samples are not capped.
+  if ((o.time_budget > 0.0 || o.target_error > 0.0) && app.count("--spp") == 0) o.spp = 0xffffffffu;
+  o.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
+  if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");
+  return o;
+}
+
+}  // namespace pt

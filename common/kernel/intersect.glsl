@@ -1,0 +1,189 @@
+// Ray-scene intersection: brute force over every primitive in one function, as the
+// article keeps it (section on raycasting: the one procedure an acceleration structure
+// would later replace). Triangles use the watertight test of Woop, Benthin and Wald
+// (JCGT 2013), so rays aimed at shared edges and vertices never slip through a mesh;
+// spheres use the cancellation-free quadratic of Haines et al. (Ray Tracing Gems, ch. 7).
+#ifndef PT_INTERSECT_GLSL
+#define PT_INTERSECT_GLSL
+
+const float kInfinity = 3.402823466e38f;  // the largest float: "no hit yet"
+
+struct Hit {
+  float t;    // distance along the ray (directions are unit length)
+  float b1;   // barycentric weight of p1 (triangles)
+  float b2;   // barycentric weight of p2 (triangles)
+  uint prim;  // index into triangles[] or spheres[]
+  uint kind;  // kPrimNone, kPrimTriangle or kPrimSphere
+};
+
+// The per-ray part of the watertight test: the axis the ray runs along most becomes z,
+// and a shear maps the ray onto +z.
+struct RayShear {
+  int kx;
+  int ky;
+  int kz;
+  vec3 s;  // x, y: shear of the kx, ky coordinates; z: 1 / dir[kz]
+};
+
+RayShear make_ray_shear(vec3 dir) {
+  vec3 a = abs(dir);
+  int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  int kx = kz == 2 ? 0 : kz + 1;
+  int ky = kx == 2 ? 0 : kx + 1;
+  if (dir[kz] < 0.0f) {  // keep the winding of the triangle
+    int swap = kx;
+    kx = ky;
+    ky = swap;
+  }
+  return RayShear(kx, ky, kz, vec3(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0f / dir[kz]));
+}
+
+// n u / (1 - n u) for u = 2^-24, float's unit roundoff: the relative error bound of n
+// chained roundings (Higham's gamma_n).
+const float kGamma2 = 1.19209304e-07f;
+const float kGamma3 = 1.78813966e-07f;
+const float kGamma5 = 2.98023313e-07f;
+
+// max() of two non-negative numbers as a select. The rounding bounds below use it: they
+// take maxima of absolute values, never NaN where a hit is possible, so it gives what
+// max() gives, and it is how glm's max works on the CPU. lavapipe compiles GLSL's max with
+// NaN handling that the select does not need (4 to 6% faster there).
+float larger(float a, float b) {
+  return a < b ? b : a;
+}
+
+// Returns a hit with triangle `index` if it is nearer than `best`, else `best`.
+Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
+  Triangle tri = triangle_at(index);
+  vec3 a = vec3(tri.p0) - ray.origin;
+  vec3 b = vec3(tri.p1) - ray.origin;
+  vec3 c = vec3(tri.p2) - ray.origin;
+  // Shear and scale the vertices into the ray's space.
+  float ax = a[rs.kx] - rs.s.x * a[rs.kz];
+  float ay = a[rs.ky] - rs.s.y * a[rs.kz];
+  float bx = b[rs.kx] - rs.s.x * b[rs.kz];
+  float by = b[rs.ky] - rs.s.y * b[rs.kz];
+  float cx = c[rs.kx] - rs.s.x * c[rs.kz];
+  float cy = c[rs.ky] - rs.s.y * c[rs.kz];
+  // Edge functions: the ray passes inside when none has a sign opposite to the others.
+  float u = cx * by - cy * bx;
+  float v = ax * cy - ay * cx;
+  float w = bx * ay - by * ax;
+  if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return best;
+  float det = u + v + w;
+  if (det == 0.0f) return best;
+  // The distance along the ray: t_scaled / det. A hit must lie ahead of the origin.
+  float az = rs.s.z * a[rs.kz];
+  float bz = rs.s.z * b[rs.kz];
+  float cz = rs.s.z * c[rs.kz];
+  float t_scaled = u * az + v * bz + w * cz;
+  float inv_det = 1.0f / det;
+  float t = t_scaled * inv_det;
+  // Only a nearer hit replaces best: of two at the same distance, the lower index stays.
+  // The result is the nearest hit whatever order the triangles are tested in, which lets
+  // the CPU test them in parallel (intersect_cpu.h).
+  if (!(t > 0.0f && t < best.t)) return best;
+  // A t no larger than its own rounding error cannot be told from 0: its sign may be
+  // wrong (a sliver far from the ray origin), and the ray would re-hit the surface it
+  // left. The bound follows the error of each step above (floating-point error analysis
+  // of the watertight test, as in pbrt's triangle test): the sheared coordinates, the
+  // edge functions, then t_scaled. kGamma(n) = n u / (1 - n u), u = 2^-24.
+  float max_x = larger(larger(abs(ax), abs(bx)), abs(cx));
+  float max_y = larger(larger(abs(ay), abs(by)), abs(cy));
+  float max_z = larger(larger(abs(az), abs(bz)), abs(cz));
+  float max_e = larger(larger(abs(u), abs(v)), abs(w));
+  float delta_x = kGamma5 * (max_x + max_z);
+  float delta_y = kGamma5 * (max_y + max_z);
+  float delta_z = kGamma3 * max_z;
+  float delta_e = 2.0f * (kGamma2 * max_x * max_y + delta_y * max_x + delta_x * max_y);
+  float delta_t = 3.0f * (kGamma3 * max_e * max_z + delta_e * max_z + delta_z * max_e) * abs(inv_det);
+  if (t <= delta_t) return best;
+  // A hit closer than the rounding of the vertices' own coordinates (relative to the ray
+  // origin) cannot be told from the surface the ray left: a large triangle far from its
+  // vertices has errors far above the spawn offset (pbrt-v4's deltaT plays this role).
+  float extent = larger(larger(larger(abs(a.x), abs(a.y)), larger(abs(a.z), abs(b.x))),
+                        larger(larger(abs(b.y), abs(b.z)), larger(larger(abs(c.x), abs(c.y)), abs(c.z))));
+  if (t <= 4e-7f * extent) return best;
+  return Hit(t, v * inv_det, w * inv_det, index, kPrimTriangle);
+}
+
+#ifdef __cplusplus
+#include "cpu/triangle_lanes.h"  // hit_triangles_blocked: the CPU's SIMD filter
+#endif
+
+// Rounding error of a sphere root, in units of the numbers it was computed from: a few
+// float epsilons for the rounding of f = origin - centre, of the origin itself (the last
+// hit's rounding) and of the products below.
+const float kSphereRootError = 1e-6f;
+
+// Returns a hit with sphere `index` if it is nearer than `best`, else `best`.
+// Both differences of squares are taken as (x - r)(x + r) of lengths, not x^2 - r^2: with
+// smallpt's walls (radius 1e5) x^2 and r^2 are 1e10, where a float's step is 1024, while
+// x - r keeps the step of x (1/128). A root is taken only beyond its own error bound (as
+// pbrt does with interval arithmetic): a ray leaving a wall of radius 1e5 finds that wall
+// again within a few hundredths of a unit, which the spawn offset cannot step over.
+Hit hit_sphere(Ray ray, uint index, Hit best) {
+  vec3 center = vec3(spheres[index].center_radius);
+  float radius = spheres[index].center_radius.w;
+  vec3 f = ray.origin - center;
+  float b = -dot(f, ray.dir);
+  float l = length(f + b * ray.dir);  // from the centre to the ray's closest point
+  float disc = (radius - l) * (radius + l);
+  if (disc < 0.0f) return best;
+  float fl = length(f);
+  float c = (fl - radius) * (fl + radius);
+  float q = b + (b >= 0.0f ? sqrt(disc) : -sqrt(disc));  // the root of larger magnitude
+  if (q == 0.0f) return best;  // the origin at the centre of a sphere of radius 0
+  float t_small = c / q;       // the other root, by Vieta's formula
+  float t = kInfinity;
+  if (q > kSphereRootError * (fl + radius)) t = q;
+  if (t_small > kSphereRootError * (fl * fl + radius * radius) / abs(q)) t = min(t, t_small);
+  if (t >= best.t) return best;
+  return Hit(t, 0.0f, 0.0f, index, kPrimSphere);
+}
+
+// The nearest hit closer than t_max, or a hit of kind kPrimNone.
+Hit intersect_scene(Ray ray, float t_max) {
+  Hit best = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+  RayShear rs = make_ray_shear(ray.dir);
+  if (has_feature(kFeatureTriangles)) {
+#ifdef __cplusplus
+    if (triangle_soa != nullptr) {
+      best = hit_triangles_blocked(ray, rs, best);  // the same hits, found faster
+    } else
+#endif
+    for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
+  }
+  if (has_feature(kFeatureSpheres)) {
+    for (uint i = 0u; i < params.counts.y; i++) best = hit_sphere(ray, i, best);
+  }
+  return best;
+}
+
+// What the integrator needs to know about the point a ray hit.
+struct Surface {
+  vec3 p;         // position
+  vec3 n;         // unit geometric normal on the front side (CCW winding, sphere outside)
+  bool front;     // the ray arrived from the front side
+  uint material;  // index into materials[]
+};
+
+Surface surface_at(Ray ray, Hit hit) {
+  if (!has_feature(kFeatureSpheres) || hit.kind == kPrimTriangle) {
+    Triangle tri = triangle_at(hit.prim);
+    vec3 p0 = vec3(tri.p0);
+    vec3 p1 = vec3(tri.p1);
+    vec3 p2 = vec3(tri.p2);
+    // The barycentric point is more accurate than origin + t * dir far from the origin.
+    vec3 p = (1.0f - hit.b1 - hit.b2) * p0 + hit.b1 * p1 + hit.b2 * p2;
+    vec3 n = normalize(cross(p1 - p0, p2 - p0));
+    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.info.x);
+  }
+  Sphere sph = spheres[hit.prim];
+  vec3 center = vec3(sph.center_radius);
+  vec3 p = ray.origin + hit.t * ray.dir;
+  vec3 n = normalize(p - center);
+  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.info.x);
+}
+
+#endif  // PT_INTERSECT_GLSL

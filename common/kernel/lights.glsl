@@ -1,0 +1,183 @@
+// Light sampling for stage4 (Eq. 5, corrected by erratum 5): pick a light in proportion
+// to its power (the table built at load), then a point on it: uniform on a triangle's
+// area, a direction in the cone a sphere subtends, the position of a point light (a
+// delta), or a cosine-weighted direction of the uniform sky. Each sample carries
+// Le / (pdf in solid angle x probability of the pick): the geometry term cos_y / d^2 and
+// the area pdf 1 / A that the printed Eq. (5) lacks are in that pdf.
+#ifndef PT_LIGHTS_GLSL
+#define PT_LIGHTS_GLSL
+
+struct LightSample {
+  vec3 wi;         // unit direction from the shading point towards the light
+  float dist;      // distance to the light point (kInfinity for the sky)
+  vec3 weight;     // Le / (pdf_solid_angle x pick probability); 0 when nothing is lit
+  float pdf;       // pdf_solid_angle x pick probability (0 for delta lights)
+};
+
+LightSample no_light() {
+  return LightSample(vec3(0.0f, 0.0f, 1.0f), 0.0f, vec3(0.0f), 0.0f);
+}
+
+// The first entry whose cumulative probability exceeds u (binary search).
+uint pick_light(float u) {
+  uint lo = 0u;
+  uint hi = params.lights.x - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    if (lights[mid].pick.y > u) hi = mid;
+    else lo = mid + 1u;
+  }
+  return lo;
+}
+
+#include "labs/lab_hooks.glsl"
+#include "labs/lab4.glsl"
+
+// A point uniform on the triangle: density 1 / area (Turk's square-root mapping).
+LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
+  PT_LAB_HOOK(4, lab4_sample_triangle_light(index, p, u, pick));  // lab 4 (docs/labs/lab4.md)
+  Triangle tri = triangles[index];
+  vec3 p0 = vec3(tri.p0);
+  vec3 p1 = vec3(tri.p1);
+  vec3 p2 = vec3(tri.p2);
+  float su = sqrt(u.x);
+  vec3 y = (1.0f - su) * p0 + su * (1.0f - u.y) * p1 + su * u.y * p2;
+  vec3 c = cross(p1 - p0, p2 - p0);
+  float area = 0.5f * length(c);
+  vec3 n = normalize(c);
+  vec3 d = y - p;
+  float dist2 = dot(d, d);
+  float dist = sqrt(dist2);
+  vec3 wi = d / dist;
+  Material m = materials[tri.info.x];
+  float cos_y = dot(-wi, n);
+  // Le from the front face only, unless double-sided (the contract (README.md)).
+  if (m.emission.w > 0.0f) cos_y = abs(cos_y);
+  if (!(cos_y > 0.0f) || !(dist > 0.0f)) return no_light();
+  float pdf = dist2 / (cos_y * area) * pick;  // area pdf 1/A turned into solid angle
+  return LightSample(wi, dist, vec3(m.emission) / pdf, pdf);
+}
+
+// From inside (or on) a sphere light: a point uniform on its area, density 1 / (4 pi r^2);
+// light reaches the inside only from a double-sided emitter.
+LightSample sample_sphere_light_inside(Sphere s, vec3 p, vec2 u, float pick) {
+  vec3 center = vec3(s.center_radius);
+  float radius = s.center_radius.w;
+  float z = 1.0f - 2.0f * u.x;
+  float r = sqrt(max(0.0f, 1.0f - z * z));
+  float phi = 2.0f * kPi * u.y;
+  vec3 n = vec3(r * cos(phi), r * sin(phi), z);
+  vec3 y = center + radius * n;
+  vec3 d = y - p;
+  float dist2 = dot(d, d);
+  float dist = sqrt(dist2);
+  Material m = materials[s.info.x];
+  if (!(dist > 0.0f) || !(m.emission.w > 0.0f)) return no_light();
+  vec3 wi = d / dist;
+  float cos_y = abs(dot(wi, n));
+  if (!(cos_y > 0.0f)) return no_light();
+  float pdf = dist2 / (cos_y * 4.0f * kPi * radius * radius) * pick;
+  return LightSample(wi, dist, vec3(m.emission) / pdf, pdf);
+}
+
+// From outside a sphere light: a direction uniform in the cone it subtends, density
+// 1 / (2 pi (1 - cos_max)).
+LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
+  Sphere s = spheres[index];
+  vec3 center = vec3(s.center_radius);
+  float radius = s.center_radius.w;
+  vec3 to_center = center - p;
+  float d2 = dot(to_center, to_center);
+  // Inside, or on the surface within rounding: the cone is the whole sphere of directions.
+  if (d2 <= radius * radius * 1.001f) return sample_sphere_light_inside(s, p, u, pick);
+  float d = sqrt(d2);
+  float sin2_max = radius * radius / d2;
+  float cos_max = sqrt(max(0.0f, 1.0f - sin2_max));
+  float cos_t = 1.0f - u.x * (1.0f - cos_max);
+  float sin_t = sqrt(max(0.0f, 1.0f - cos_t * cos_t));
+  float phi = 2.0f * kPi * u.y;
+  Frame f = make_frame(to_center / d);
+  vec3 wi = frame_to_world(f, vec3(sin_t * cos(phi), sin_t * sin(phi), cos_t));
+  // Where that direction meets the sphere (the near root).
+  float b = dot(to_center, wi);
+  float disc = max(0.0f, radius * radius - (d2 - b * b));
+  float dist = b - sqrt(disc);
+  float pdf = pick / (2.0f * kPi * (1.0f - cos_max));
+  if (!(pdf > 0.0f) || isinf(pdf)) return no_light();
+  return LightSample(wi, dist, vec3(materials[s.info.x].emission) / pdf, pdf);
+}
+
+// A point light of intensity I (W/sr): radiance arrives from one direction, I / d^2.
+LightSample sample_point_light(uint index, vec3 p, float pick) {
+  vec3 d = vec3(point_lights[index].position) - p;
+  float dist2 = dot(d, d);
+  float dist = sqrt(dist2);
+  if (!(dist > 0.0f)) return no_light();
+  return LightSample(d / dist, dist, vec3(point_lights[index].intensity) / (dist2 * pick), 0.0f);
+}
+
+// The uniform sky: a cosine-weighted direction about the normal n, density cos / pi.
+LightSample sample_sky(vec3 n, vec2 u, float pick) {
+  vec3 local = sample_cosine_hemisphere(u);
+  float pdf = cosine_hemisphere_pdf(local.z) * pick;
+  if (!(pdf > 0.0f)) return no_light();
+  return LightSample(frame_to_world(make_frame(n), local), kInfinity, vec3(params.sky) / pdf, pdf);
+}
+
+// One light sample for the shading point p with normal n (on the side light may come from).
+LightSample sample_light(vec3 p, vec3 n) {
+  float u = rng_next_float();
+  vec2 u2 = rng_next_vec2();
+  float sky_pick = has_feature(kFeatureSky) ? params.sky.w : 0.0f;
+  if (u < sky_pick) return sample_sky(n, u2, sky_pick);
+  if (params.lights.x == 0u) return no_light();
+  uint index = pick_light((u - sky_pick) / (1.0f - sky_pick));
+  Light light = lights[index];
+  float pick = (1.0f - sky_pick) * light.pick.x;
+  if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.info.x == kLightTriangle) {
+    return sample_triangle_light(light.info.y, p, u2, pick);
+  }
+  if (!has_feature(kFeaturePointLights) || light.info.x == kLightSphere) {
+    return sample_sphere_light(light.info.y, p, u2, pick);
+  }
+  return sample_point_light(light.info.y, p, pick);
+}
+
+// The pdf (solid angle x pick probability) with which sample_light picks, from a point,
+// the direction wi that meets the emissive triangle `index` at distance dist: what a
+// light sample's pdf must equal (the tests check it; multiple importance sampling would
+// weigh BRDF samples with it).
+float triangle_light_pdf(uint index, vec3 wi, float dist) {
+  Triangle tri = triangles[index];
+  if (tri.info.y == kNoLight) return 0.0f;
+  vec3 c = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));
+  float area = 0.5f * length(c);
+  float cos_y = dot(-wi, normalize(c));
+  if (materials[tri.info.x].emission.w > 0.0f) cos_y = abs(cos_y);
+  if (!(cos_y > 0.0f)) return 0.0f;
+  float pick = (1.0f - params.sky.w) * lights[tri.info.y].pick.x;
+  return dist * dist / (cos_y * area) * pick;
+}
+
+// Units in the last place of the light point's coordinates by which a shadow ray stops
+// short of it: p + dist wi rebuilds the point only to within a few ulps of its magnitude,
+// which far from the origin (ulp 0.0078 at 1e5) is far more than the relative 1e-4 of a
+// short ray, and a shadow ray that reached past the point hit the light itself (black).
+const float kShadowEndUlps = 16.0f;
+
+// Whether anything lies between the surface point p (normal n) and the light sample. The
+// shadow ray starts off the surface (spawn_ray); its length is measured from there, and
+// stops just short of the light point so that the light itself does not block it.
+bool occluded(vec3 p, vec3 n, LightSample ls) {
+  Ray shadow = spawn_ray(p, n, ls.wi);
+  if (ls.dist == kInfinity) return intersect_scene(shadow, kInfinity).kind != kPrimNone;
+  // Aim from the offset origin at the light point itself (pbrt's SpawnRayTo).
+  vec3 y = p + ls.dist * ls.wi;
+  vec3 to_light = y - shadow.origin;
+  float length_to_light = length(to_light);
+  shadow.dir = to_light / length_to_light;
+  float short_of = max(length_to_light * 1e-4f, kShadowEndUlps * ulp_above(max(abs(y.x), max(abs(y.y), abs(y.z)))));
+  return intersect_scene(shadow, length_to_light - short_of).kind != kPrimNone;
+}
+
+#endif  // PT_LIGHTS_GLSL

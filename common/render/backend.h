@@ -1,0 +1,72 @@
+// The two backends behind one interface: the CPU runs a stage's kernel compiled as C++ on
+// all cores, the GPU runs the same kernel compiled to SPIR-V (gpu/). A backend renders one
+// pass at a time; the film (film.h) adds the passes up.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "common/kernel/scene_types.h"
+
+namespace pt {
+
+struct Scene;
+
+// The scene arrays as the CPU kernel sees them (the GLSL buffers of bindings.glsl).
+struct KernelScene {
+  const Triangle* triangles;
+  const Sphere* spheres;
+  const Material* materials;
+  const PointLight* point_lights;
+  uint* counters;  // kCounterCount values, updated by the kernel
+  const Light* lights;
+  const float* triangle_soa = nullptr;  // the triangles as arrays (triangle_soa.h), or nullptr
+  uint triangle_soa_stride = 0;
+};
+
+// A stage's kernel compiled as C++ (cpu/kernel_entry.h).
+struct CpuKernel {
+  void (*bind)(const KernelScene& scene, const FrameParams& pass);
+  void (*render_rows)(uint y0, uint y1, glm::vec4* out);
+};
+
+// Everything a stage hands to the backends: its name, and its kernel in both forms.
+struct StageKernels {
+  const char* name;                      // e.g. "stage1_raycast"
+  std::span<const CpuKernel> cpu;        // the integrator compiled as C++, one copy per
+                                         // feature variant (cpu/cpu_variants.h); one
+                                         // copy alone is the general kernel
+  std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
+  bool uses_light_table = false;         // reads lights[] and point_lights[] (stage4)
+
+  // The CPU copy built for (at least) the scene features `features` (kFeature* bits).
+  const CpuKernel& cpu_for(uint features) const;
+};
+
+// What a pass reports besides its image.
+struct PassResult {
+  double kernel_seconds = 0.0;       // the time the kernel ran (GPU: timestamp queries)
+  uint counters[kCounterCount] = {};  // the kernel's event counters (scene_types.h)
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string kind() const = 0;         // "cpu" or "gpu"
+  virtual std::string device_name() const = 0;  // e.g. "2 threads", "llvmpipe (LLVM 15.0.6)"
+  // Makes the scene's arrays available to the kernel (an upload on the GPU), and readies
+  // the kernel specialised to `features` (kFeature* bits, common/kernel/features.glsl):
+  // arrays that no feature of the set reads are not uploaded.
+  virtual void set_scene(const Scene& scene, uint features) = 0;
+  // Renders params.image.w samples of every pixel into out (width * height values of
+  // render_pixel(): rgb sum, squared-luminance sum).
+  virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
+};
+
+std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads = 0);
+
+}  // namespace pt

@@ -1,0 +1,89 @@
+// The render loop shared by every stage: passes of doubling sample counts on a backend,
+// added up by the film, with a progress line on a terminal. The pass schedule depends only
+// on the sample count, so the same seed and options give the same image on a backend.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "common/render/backend.h"
+#include "common/render/film.h"
+
+namespace pt {
+
+struct Scene;
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  std::uint64_t spp = 1;
+  std::uint32_t seed = 0;
+  glm::vec3 sky{0.0f};
+  std::uint32_t roulette = kRouletteFixed;  // stage2 onwards
+  std::uint32_t depth_cap = 1000;           // stage2 onwards: a safety net only
+  double time_budget = 0.0;                 // seconds; > 0: stop after the pass that spends it
+  double target_error = 0.0;                // > 0: stop once the estimated relative standard
+                                            // error of the image mean is below it
+  bool all_features = false;                // the general kernel, not the one specialised
+                                            // to the scene's features (--all-features)
+  bool progress = false;                    // progress line on stderr
+  const char* label = "render";             // names the progress line
+  // Checkpoints (common/app/checkpoint.h): continue from this state instead of an empty film,
+  // and hand the state to `save` every save_seconds, at an interrupt and at a device
+  // failure (never after a pass cut short by --spp: the schedule must stay whole).
+  const struct RenderResult* resume = nullptr;
+  std::function<void(const struct RenderResult&)> save;
+  double save_seconds = 0.0;
+};
+
+// "No pixel" in kCounterNonFinitePixel.
+constexpr std::uint32_t kNoPixel = 0xffffffffu;
+
+// The kernels' event counters, summed over the passes (scene_types.h, kCounter*).
+struct RenderCounters {
+  std::uint64_t depth_cap = 0;   // paths stopped by the depth cap
+  std::uint64_t zero_pdf = 0;    // paths ended by a zero pdf or a non-finite weight
+  std::uint64_t non_finite = 0;  // NaN or infinite samples dropped
+  std::uint32_t first_non_finite_pixel = kNoPixel;
+  std::uint64_t loop_limit = 0;  // pixel passes the Vulkan driver cut short (render_pixel.glsl)
+  void add(const PassResult& pass);
+};
+
+struct RenderResult {
+  Film film;
+  double seconds = 0.0;         // wall time of the passes
+  double kernel_seconds = 0.0;  // time the kernels ran (GPU: timestamp queries)
+  RenderCounters counters;
+  std::uint64_t passes = 0;  // passes done: the next pass's place in the schedule
+  std::string device_error;  // set when the backend failed (exit 4): the film has the
+                             // samples done before it
+};
+
+// Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's
+// watchdog) and the progress line moves.
+constexpr std::uint64_t kMaxPassSamples = 16;
+
+// --target-error trusts the variance estimate only after this many samples per pixel.
+constexpr std::uint64_t kMinSamplesForError = 16;
+
+// Samples in pass number `index` (0, 1, ...): 1, 2, 4, ... up to kMaxPassSamples.
+std::uint64_t pass_samples(std::uint64_t index);
+
+// The parameters every pass shares (the first sample index and count are set per pass).
+FrameParams make_frame_params(const Scene& scene, const RenderSettings& settings);
+
+RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& settings);
+
+// Bytes of host memory a render of this size needs (film + pass buffer; a resumed render
+// holds a second film, the checkpoint's, while it starts: resuming = true), with overflow
+// checks; throws pt::Error(2) naming the numbers if the machine does not have them. The
+// GPU backend checks its own device's limits.
+void check_image_memory(int width, int height, bool resuming = false);
+
+// The host memory available now (MemAvailable of /proc/meminfo, else all of it).
+std::uint64_t available_memory_bytes();
+
+}  // namespace pt

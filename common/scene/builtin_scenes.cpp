@@ -1,0 +1,190 @@
+// Built-in scenes: the Cornell box (the default scene of every stage) and, by name, the
+// analytic scenes of the tests (analytic_scenes.cpp). Also load_scene(), which picks
+// between a built-in scene and a glTF file.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "common/scene/analytic_scenes.h"
+#include "common/base/error.h"
+#include "common/scene/scene_loading.h"
+
+namespace pt {
+
+namespace {
+
+// The Cornell box's room and light; returns the white material for what goes inside.
+uint cornell_room(Scene& s) {
+  uint white = s.add_material(make_diffuse({0.73f, 0.73f, 0.73f}));
+  uint red = s.add_material(make_diffuse({0.65f, 0.05f, 0.05f}));
+  uint green = s.add_material(make_diffuse({0.12f, 0.45f, 0.15f}));
+  uint light = s.add_material(make_diffuse({0.78f, 0.78f, 0.78f}, {17.0f, 12.0f, 4.0f}));
+  add_room(s, 1.0f, white, white, white, red, green, -1);
+  // The ceiling light, a little below the ceiling, facing down.
+  float l = 0.25f, y = 0.998f;
+  add_quad(s, {-l, y, -l}, {l, y, -l}, {l, y, l}, {-l, y, l}, light);
+  CameraDesc cam;
+  cam.yfov = 0.6911f;  // 39.6 degrees
+  cam.to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 3.9f));
+  s.camera = cam;
+  return white;
+}
+
+void short_box(Scene& s, uint material) { add_box(s, {0.33f, -0.7f, 0.3f}, {0.3f, 0.3f, 0.3f}, -0.31f, material); }
+void tall_box(Scene& s, uint material) { add_box(s, {-0.35f, -0.4f, -0.3f}, {0.3f, 0.6f, 0.3f}, 0.29f, material); }
+
+Scene cornell() {
+  Scene s;
+  uint white = cornell_room(s);
+  short_box(s, white);
+  tall_box(s, white);
+  return s;
+}
+
+// The Cornell box with glossy boxes: a GGX gold-like conductor, roughness 0.3.
+Scene cornell_glossy() {
+  Scene s;
+  cornell_room(s);
+  uint gold = s.add_material(make_metal({0.95f, 0.75f, 0.35f}, 0.3f));
+  short_box(s, gold);
+  tall_box(s, gold);
+  return s;
+}
+
+// The Cornell box with a glass sphere (ior 1.5) in place of the tall box.
+Scene cornell_glass() {
+  Scene s;
+  uint white = cornell_room(s);
+  short_box(s, white);
+  s.add_sphere({-0.35f, -0.6f, -0.25f}, 0.4f, s.add_material(make_glass(glm::vec3(1.0f), 1.5f)));
+  return s;
+}
+
+// Every feature the renderer models in one room (issue "model only what a scene
+// requires": the general kernel's own scene): triangles and spheres; diffuse, mirror,
+// GGX, glass and mixed materials; emissive triangles, an emissive sphere and a point
+// light (render it with --sky for the last feature).
+Scene every_feature() {
+  Scene s;
+  cornell_room(s);
+  short_box(s, s.add_material(make_metal({0.95f, 0.75f, 0.35f}, 0.3f)));
+  tall_box(s, s.add_material(make_gltf_material({0.6f, 0.6f, 0.8f}, 0.5f, 0.2f, 0.0f, 1.5f, {}, false)));
+  s.add_sphere({-0.5f, -0.75f, 0.5f}, 0.25f, s.add_material(make_glass(glm::vec3(1.0f), 1.5f)));
+  s.add_sphere({0.5f, 0.1f, -0.5f}, 0.2f, s.add_material(make_metal(glm::vec3(0.9f), 0.0f)));
+  s.add_sphere({0.0f, 0.6f, 0.3f}, 0.05f, s.add_material(make_diffuse(glm::vec3(0.0f), {20.0f, 20.0f, 30.0f})));
+  s.point_lights.push_back(PointLight{glm::vec4(0.6f, 0.8f, 0.6f, 1.0f), glm::vec4(0.3f, 0.3f, 0.2f, 0.0f)});
+  return s;
+}
+
+// Kevin Beason's smallpt (2008), rebuilt from its published numbers: the walls are spheres
+// of radius 1e5 (a test of ray/sphere precision in float, intersect.glsl), a mirror and a
+// glass ball, and the light a sphere of radius 600 whose cap pokes 0.27 below the ceiling.
+// smallpt starts its camera rays 140 units ahead, past its black front wall; here the
+// front wall is left out instead (black, it only absorbed), so light leaving the box
+// through the open front can come back off the walls' far parts: a slightly brighter box.
+Scene smallpt() {
+  Scene s;
+  auto wall = [&](glm::vec3 c, glm::vec3 albedo) { s.add_sphere(c, 1e5f, s.add_material(make_diffuse(albedo))); };
+  wall({1e5f + 1.0f, 40.8f, 81.6f}, {0.75f, 0.25f, 0.25f});   // left
+  wall({-1e5f + 99.0f, 40.8f, 81.6f}, {0.25f, 0.25f, 0.75f}); // right
+  wall({50.0f, 40.8f, 1e5f}, glm::vec3(0.75f));               // back
+  wall({50.0f, 1e5f, 81.6f}, glm::vec3(0.75f));               // bottom
+  wall({50.0f, -1e5f + 81.6f, 81.6f}, glm::vec3(0.75f));      // top
+  s.add_sphere({27.0f, 16.5f, 47.0f}, 16.5f, s.add_material(make_metal(glm::vec3(0.999f), 0.0f)));  // mirror
+  s.add_sphere({73.0f, 16.5f, 78.0f}, 16.5f, s.add_material(make_glass(glm::vec3(0.999f), 1.5f)));  // glass
+  s.add_sphere({50.0f, 681.6f - 0.27f, 81.6f}, 600.0f, s.add_material(make_diffuse(glm::vec3(0.0f), glm::vec3(12.0f))));
+  // The camera at (50, 52, 295.6) looking along (0, -0.042612, -1); smallpt's image plane
+  // spans 0.5135 in height at unit distance.
+  CameraDesc cam;
+  cam.yfov = 2.0f * std::atan(0.5f * 0.5135f);
+  cam.to_world = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(50.0f, 52.0f, 295.6f)),
+                             -std::atan(0.042612f), glm::vec3(1.0f, 0.0f, 0.0f));
+  s.camera = cam;
+  // The room, for the spawn offset's scale: the walls' spheres reach 2e5 away.
+  Bounds room;
+  room.extend({0.0f, 0.0f, 0.0f});
+  room.extend({100.0f, 81.6f, 170.0f});
+  s.region = room;
+  return s;
+}
+
+// The floor under a square light of another size, the same power as builtin:floor_light.
+Scene floor_light_sized(float half) {
+  analytic::FloorLightScene a;
+  a.emission *= (a.light_half * a.light_half) / (half * half);
+  a.light_half = half;
+  return analytic::make_floor_light(a);
+}
+
+struct Builtin {
+  BuiltinInfo info;
+  Scene (*make)();
+};
+
+const std::vector<Builtin>& registry() {
+  static const std::vector<Builtin> list = {
+      {{"cornell", "the Cornell box with its ceiling light (the default scene)"}, cornell},
+      {{"cornell_glossy", "the Cornell box with GGX conductor boxes (roughness 0.3)"}, cornell_glossy},
+      {{"cornell_glass", "the Cornell box with a glass sphere (ior 1.5) for the tall box"}, cornell_glass},
+      {{"every_feature", "every shape, material and light kind in one room (add --sky for the last)"}, every_feature},
+      {{"smallpt", "Beason's smallpt scene: walls as spheres of radius 1e5, a mirror and a glass ball"}, smallpt},
+      {{"furnace", "camera inside a closed box, walls emit 1 with albedo 0.5: Le/(1-albedo) = 2"},
+       [] { return analytic::make_furnace({}); }},
+      {{"furnace_sphere", "camera inside an emitting sphere (albedo 0.5, Le 1, double-sided): 2"},
+       [] { return analytic::make_furnace_sphere({}); }},
+      {{"sphere", "a diffuse sphere of radius 1 at distance 4 before a perspective camera"},
+       [] { return analytic::make_sphere({}); }},
+      {{"quad", "a square turned by 0.5 rad under an orthographic camera"}, [] { return analytic::make_quad({}); }},
+      {{"floor_light", "a diffuse floor under a square emitter, seen from below it (Lambert's formula)"},
+       [] { return analytic::make_floor_light({}); }},
+      {{"floor_small_light", "builtin:floor_light with a light of half-size 0.1 (same power)"},
+       [] { return floor_light_sized(analytic::kSmallLightHalf); }},
+      {{"floor_large_light", "builtin:floor_light with a light of half-size 2 (same power)"},
+       [] { return floor_light_sized(analytic::kLargeLightHalf); }},
+      {{"mirror", "a mirror reflecting an emitter straight back to the camera: F0 x Le"},
+       [] { return analytic::make_mirror({}); }},
+      {{"glass_slab", "a glass slab (ior 1.5) before an emitter: Le (1 - R) / (1 + R)"},
+       [] { return analytic::make_glass_slab({}); }},
+      {{"point_floor", "a diffuse floor under a point light: albedo I cos / (pi d^2) (stage4)"},
+       [] { return analytic::make_point_floor({}); }},
+      {{"point_in_sphere", "inside a diffuse sphere with a point light of intensity pi at its centre: 1 (stage4)"},
+       [] { return analytic::make_point_in_sphere({}); }},
+  };
+  return list;
+}
+
+}  // namespace
+
+const std::vector<BuiltinInfo>& builtin_scenes() {
+  static const std::vector<BuiltinInfo> infos = [] {
+    std::vector<BuiltinInfo> v;
+    for (const Builtin& b : registry()) v.push_back(b.info);
+    return v;
+  }();
+  return infos;
+}
+
+Scene make_builtin_scene(const std::string& name) {
+  for (const Builtin& b : registry()) {
+    if (b.info.name == name) {
+      Scene s = b.make();
+      s.name = "builtin:" + name;
+      build_light_table(s);
+      return s;
+    }
+  }
+  std::string names;
+  for (const Builtin& b : registry()) names += (names.empty() ? "" : ", ") + b.info.name;
+  throw Error(kExitBadScene, "unknown built-in scene 'builtin:" + name + "'; the built-in scenes are " + names);
+}
+
+Scene load_scene(const std::string& spec) {
+  const std::string prefix = "builtin:";
+  if (spec.rfind(prefix, 0) == 0) return make_builtin_scene(spec.substr(prefix.size()));
+  Scene s = load_gltf(spec);
+  s.name = spec;
+  build_light_table(s);
+  return s;
+}
+
+}  // namespace pt

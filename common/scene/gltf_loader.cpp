@@ -1,0 +1,318 @@
+// The glTF 2.0 loader of the contract (README.md) "Scenes": every triangle primitive of the default
+// scene with node transforms applied, metallic-roughness factors as materials,
+// KHR_lights_punctual point lights and the first camera. Checks of the file itself live
+// in gltf_validate.cpp; what is not modelled is named once on stderr.
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "common/base/error.h"
+#include "common/scene/gltf_validate.h"
+#include "common/scene/scene_loading.h"
+
+namespace pt {
+
+namespace {
+
+using gltf::checked_float;
+using gltf::fail;
+
+// Textures are not modelled: images are kept undecoded.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                void*) {
+  return true;
+}
+
+// tinygltf looks for buffers in the scene's folder, then in the working directory; only
+// the scene's folder counts (user_data is the folder, "" for the working directory).
+bool exists_in_scene_folder(const std::string& file, void* user_data) {
+  const std::string& base = *static_cast<const std::string*>(user_data);
+  if (!base.empty() && file.compare(0, base.size(), base) != 0) return false;
+  return tinygltf::FileExists(file, nullptr);
+}
+
+tinygltf::Model parse_model(gltf::SourceFile& source, const std::string& path) {
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetFsCallbacks({&exists_in_scene_folder, &tinygltf::ExpandFilePath, &tinygltf::ReadWholeFile,
+                         &tinygltf::WriteWholeFile, &source.base_dir});
+  tinygltf::Model model;
+  std::string err, warn;  // tinygltf's warnings concern images, which are not used
+  unsigned size = unsigned(source.bytes.size());
+  bool ok = source.binary
+                ? loader.LoadBinaryFromMemory(&model, &err, &warn, source.bytes.data(), size, source.base_dir)
+                : loader.LoadASCIIFromString(&model, &err, &warn,
+                                             reinterpret_cast<const char*>(source.bytes.data()), size,
+                                             source.base_dir);
+  if (!ok) {
+    std::string first = err.substr(0, err.find('\n'));
+    while (!first.empty() && (first.back() == '.' || first.back() == ' ')) first.pop_back();
+    fail(path, (first.empty() ? "tinygltf could not read it" : first) + "; " + gltf::kReexport);
+  }
+  return model;
+}
+
+// A node's own transform: its matrix, else translation * rotation * scale.
+glm::dmat4 local_transform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
+  glm::dmat4 m(1.0);
+  if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
+  if (node.rotation.size() == 4) {
+    const std::vector<double>& q = node.rotation;  // glTF order: x, y, z, w
+    m = m * glm::mat4_cast(glm::normalize(glm::dquat(q[3], q[0], q[1], q[2])));
+  }
+  if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+  return m;
+}
+
+// A number from a material extension, e.g. KHR_materials_ior.ior, or its default.
+double extension_number(const tinygltf::ExtensionMap& extensions, const std::string& name,
+                        const std::string& key, double fallback, const std::string& where,
+                        const std::string& file) {
+  auto it = extensions.find(name);
+  if (it == extensions.end() || !it->second.Has(key)) return fallback;
+  const tinygltf::Value& value = it->second.Get(key);
+  if (!value.IsNumber())
+    fail(file, where + ".extensions." + name + "." + key + " is not a number: " + gltf::kReexport);
+  return value.GetNumberAsDouble();
+}
+
+void warn_unmodelled(const tinygltf::Model& model, const std::string& file) {
+  if (!model.textures.empty() || !model.images.empty()) {
+    warn_once(file + ": scene uses textures; they are not modelled (base colour factors only)");
+  }
+  if (!model.animations.empty())
+    warn_once(file + ": scene has animations; they are not modelled (drawn at rest)");
+  if (!model.skins.empty()) warn_once(file + ": scene has skins; they are not modelled (drawn in bind pose)");
+}
+
+// Walks the default scene and fills a pt::Scene.
+class SceneBuilder {
+ public:
+  SceneBuilder(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file) {
+    scene_.name = file;
+  }
+
+  // Depth first, children in order, with an explicit stack (hierarchies can be deep).
+  void add_tree(int root) {
+    std::vector<std::pair<int, glm::dmat4>> stack = {{root, glm::dmat4(1.0)}};
+    while (!stack.empty()) {
+      auto [index, parent_world] = stack.back();
+      stack.pop_back();
+      const tinygltf::Node& node = model_.nodes[index];
+      glm::dmat4 world = parent_world * local_transform(node);
+      add_node(index, node, world);
+      for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+        stack.emplace_back(*child, world);
+      }
+    }
+  }
+
+  Scene take() { return std::move(scene_); }
+
+ private:
+  void add_node(int index, const tinygltf::Node& node, const glm::dmat4& world) {
+    std::string where = "nodes[" + std::to_string(index) + "]";
+    if (!all_finite(world))
+      fail(file_, where + ": its world transform overflows 32-bit floats: " + gltf::kReexport);
+    if (node.camera != -1) add_camera(node.camera, world, where);
+    if (node.mesh != -1) add_mesh(node.mesh, world);
+    auto light = node.extensions.find("KHR_lights_punctual");
+    if (light != node.extensions.end()) add_light(light->second.Get("light").GetNumberAsInt(), world);
+  }
+
+  static bool all_finite(const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) {
+        if (!std::isfinite(float(m[c][r]))) return false;
+      }
+    }
+    return true;
+  }
+
+  void add_camera(int index, const glm::dmat4& world, const std::string& node) {
+    if (scene_.camera) {
+      warn_once(file_ + ": scene has more than one camera; using the first one met (" + first_camera_ + ")");
+      return;
+    }
+    const tinygltf::Camera& c = model_.cameras[index];
+    std::string where = "cameras[" + std::to_string(index) + "]";
+    CameraDesc desc;
+    desc.to_world = glm::mat4(world);
+    if (c.type == "perspective") {
+      desc.kind = kCameraPerspective;
+      desc.yfov = checked_float(file_, c.perspective.yfov, where + ".perspective.yfov", 1e-6, 3.14159);
+    } else if (c.type == "orthographic") {
+      desc.kind = kCameraOrthographic;
+      desc.xmag = checked_float(file_, c.orthographic.xmag, where + ".orthographic.xmag");
+      desc.ymag = checked_float(file_, c.orthographic.ymag, where + ".orthographic.ymag");
+      if (desc.xmag == 0.0f || desc.ymag == 0.0f)
+        fail(file_, where + ": xmag and ymag must not be zero; re-export it");
+    } else {
+      fail(file_,
+           where + ".type '" + c.type + "' is neither perspective nor orthographic: " + gltf::kReexport);
+    }
+    scene_.camera = desc;
+    first_camera_ = node;
+  }
+
+  void add_light(int index, const glm::dmat4& world) {
+    const tinygltf::Light& light = model_.lights[index];
+    if (light.type != "point") {
+      warn_once(file_ + ": scene has " + light.type +
+                " lights (KHR_lights_punctual); only point lights are modelled");
+      return;
+    }
+    std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
+    float intensity = checked_float(file_, light.intensity, where + ".intensity", 0.0);
+    glm::vec3 color(1.0f);
+    if (!light.color.empty() && light.color.size() != 3)
+      fail(file_, where + ".color needs 3 numbers: " + gltf::kReexport);
+    for (std::size_t k = 0; k < light.color.size(); ++k) {
+      color[int(k)] = checked_float(file_, light.color[k], where + ".color[" + std::to_string(k) + "]", 0.0);
+    }
+    glm::vec3 position(world[3]);
+    glm::vec3 power = intensity * color;
+    if (!std::isfinite(power.x + power.y + power.z))
+      fail(file_, where + ": intensity x color overflows: " + gltf::kReexport);
+    scene_.point_lights.push_back(PointLight{glm::vec4(position, 1.0f), glm::vec4(power, 0.0f)});
+  }
+
+  void add_mesh(int mesh_index, const glm::dmat4& world) {
+    const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      std::string where = "meshes[" + std::to_string(mesh_index) + "].primitives[" + std::to_string(p) + "]";
+      if (!prim.targets.empty())
+        warn_once(file_ + ": scene has morph targets; they are not modelled (base shape)");
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
+        warn_once(file_ + ": scene has primitives of mode " + std::to_string(prim.mode) +
+                  " (points, lines, strips or fans); only triangle lists (mode 4) are drawn");
+        continue;
+      }
+      auto position = prim.attributes.find("POSITION");
+      if (position == prim.attributes.end()) {
+        warn_once(file_ + ": " + where + " has no POSITION; it is skipped");
+        continue;
+      }
+      add_primitive(prim, position->second, where, world);
+    }
+  }
+
+  void add_primitive(const tinygltf::Primitive& prim, int position_accessor, const std::string& where,
+                     const glm::dmat4& world) {
+    std::string what = "accessors[" + std::to_string(position_accessor) + "] (POSITION of " + where + ")";
+    std::vector<glm::vec3> positions = gltf::read_positions(model_, position_accessor, file_, what);
+    std::vector<std::uint32_t> indices;
+    if (prim.indices != -1) {
+      what = "accessors[" + std::to_string(prim.indices) + "] (indices of " + where + ")";
+      indices = gltf::read_indices(model_, prim.indices, positions.size(), file_, what);
+    } else {
+      for (std::uint32_t i = 0; i < positions.size(); ++i) indices.push_back(i);
+    }
+    if (indices.size() % 3 != 0) {
+      fail(file_, what + " has " + std::to_string(indices.size()) +
+                      " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
+    }
+    uint material = material_index(prim.material);
+    for (std::size_t t = 0; t < indices.size(); t += 3) {
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::dvec4(positions[indices[t + k]], 1.0));
+      // Skip what has no area once in 32-bit floats (or overflowed)
+      glm::dvec3 n = glm::cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
+      if (!(glm::dot(n, n) > 0.0) || !std::isfinite(glm::dot(n, n))) {
+        ++scene_.degenerate_triangles;
+        continue;
+      }
+      scene_.add_triangle(p[0], p[1], p[2], material);
+    }
+  }
+
+  // Each glTF material used is added once; -1 is glTF's default material.
+  uint material_index(int gltf_index) {
+    auto found = materials_.find(gltf_index);
+    if (found != materials_.end()) return found->second;
+    Material m = gltf_index == -1
+                     ? make_gltf_material(glm::vec3(1.0f), 1.0f, 1.0f, 0.0f, 1.5f, glm::vec3(0.0f), false)
+                     : convert_material(gltf_index);
+    return materials_[gltf_index] = scene_.add_material(m);
+  }
+
+  Material convert_material(int index) {
+    const tinygltf::Material& m = model_.materials[index];
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    std::string where = "materials[" + std::to_string(index) + "]";
+    std::string factors = where + ".pbrMetallicRoughness.";
+    if (pbr.baseColorFactor.size() != 4)
+      fail(file_, factors + "baseColorFactor needs 4 numbers: " + gltf::kReexport);
+    glm::vec3 base, emission;
+    double strength = extension_number(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength",
+                                       1.0, where, file_);
+    checked_float(file_, strength, where + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+                  0.0);
+    for (int k = 0; k < 3; ++k) {
+      std::string i = "[" + std::to_string(k) + "]";
+      base[k] = checked_float(file_, pbr.baseColorFactor[k], factors + "baseColorFactor" + i, 0.0, 1.0);
+      checked_float(file_, m.emissiveFactor[k], where + ".emissiveFactor" + i, 0.0, 1.0);
+      emission[k] =
+          checked_float(file_, m.emissiveFactor[k] * strength, where + ".emissiveFactor" + i + " x strength");
+    }
+    float metallic = checked_float(file_, pbr.metallicFactor, factors + "metallicFactor", 0.0, 1.0);
+    float roughness = checked_float(file_, pbr.roughnessFactor, factors + "roughnessFactor", 0.0, 1.0);
+    double transmission =
+        extension_number(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, where, file_);
+    double ior = extension_number(m.extensions, "KHR_materials_ior", "ior", 1.5, where, file_);
+    if (ior == 0.0) {
+      warn_once(file_ + ": " + where + " has KHR_materials_ior ior 0, which is not modelled; using 1.5");
+      ior = 1.5;
+    }
+    float t = checked_float(file_, transmission,
+                            where + ".extensions.KHR_materials_transmission.transmissionFactor", 0.0, 1.0);
+    float eta = checked_float(file_, ior, where + ".extensions.KHR_materials_ior.ior", 1.0);
+    if (m.alphaMode != "OPAQUE")
+      warn_once(file_ + ": scene uses alphaMode " + m.alphaMode + "; surfaces are drawn opaque");
+    return make_gltf_material(base, metallic, roughness, t, eta, emission, m.doubleSided);
+  }
+
+  const tinygltf::Model& model_;
+  std::string file_;
+  Scene scene_;
+  std::map<int, uint> materials_;  // glTF material index -> Scene::materials index
+  std::string first_camera_;       // the node whose camera is used
+};
+
+// The roots of the default scene (scene 0 when none is named; every root node when
+// the file has no scenes).
+std::vector<int> scene_roots(const tinygltf::Model& model, const std::vector<int>& parents) {
+  if (!model.scenes.empty()) return model.scenes[model.defaultScene == -1 ? 0 : model.defaultScene].nodes;
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < parents.size(); ++i) {
+    if (parents[i] == -1) roots.push_back(int(i));
+  }
+  return roots;
+}
+
+}  // namespace
+
+Scene load_gltf(const std::string& path) {
+  gltf::SourceFile source = gltf::read_and_precheck(path);
+  tinygltf::Model model = parse_model(source, path);
+  std::vector<int> parents = gltf::check_model(model, path);
+  warn_unmodelled(model, path);
+  SceneBuilder builder(model, path);
+  for (int root : scene_roots(model, parents)) builder.add_tree(root);
+  Scene scene = builder.take();
+  if (scene.degenerate_triangles > 0) {
+    warn_once(path + ": " + std::to_string(scene.degenerate_triangles) +
+              " degenerate triangle(s) (zero area or non-finite) skipped");
+  }
+  return scene;
+}
+
+}  // namespace pt

@@ -1,0 +1,95 @@
+// The scene on the host: flat arrays of triangles, spheres, materials and point lights,
+// plus the camera as the file describes it (docs/README.md, "Scene and kernels").
+// Loaded from glTF (gltf_loader.cpp) or built in (builtin_scenes.cpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "common/kernel/scene_types.h"
+
+namespace pt {
+
+// A camera as glTF gives it; the image aspect is only known at render time.
+struct CameraDesc {
+  uint kind = kCameraPerspective;  // kCameraPerspective or kCameraOrthographic
+  glm::mat4 to_world{1.0f};        // the camera node's world transform (looks down -Z)
+  float yfov = 0.6911f;            // perspective: vertical field of view, radians
+  float xmag = 1.0f, ymag = 1.0f;  // orthographic: half-extents of the view
+};
+
+struct Bounds {
+  glm::vec3 lo{1e30f}, hi{-1e30f};
+  void extend(glm::vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+  bool empty() const { return lo.x > hi.x; }
+};
+
+struct Scene {
+  std::string name;                      // file path or builtin:NAME
+  std::vector<Triangle> triangles;       // world space, material in info.x
+  std::vector<Sphere> spheres;           // world space, material in info.x
+  std::vector<Material> materials;       // indexed by Triangle/Sphere info.x
+  std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
+  std::vector<Light> lights;             // the light table: build_light_table()
+  double light_power = 0.0;              // the table's total power (luminance), same place
+  std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
+  int degenerate_triangles = 0;          // skipped at load (zero area or not finite)
+  std::optional<Bounds> region;          // where the scene's content is, when its shapes'
+                                         // bounds overstate it (smallpt's walls are spheres
+                                         // of radius 1e5): bounds() returns it, so the
+                                         // spawn offset and framing use the room's size
+
+  Bounds bounds() const;  // `region` when set, else the shapes' bounds
+  // Appends a material and returns its index.
+  uint add_material(const Material& m);
+  void add_triangle(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, uint material);
+  void add_sphere(glm::vec3 center, float radius, uint material);
+};
+
+// Shape builders for built-in scenes: a quad p0 p1 p2 p3 (counter-clockwise seen from its
+// front) as two triangles; a box turned by `angle` about +Y, faces outwards; the inside
+// of the cube [-h, h]^3 with each face turned inwards (front < 0: no front wall).
+void add_quad(Scene& s, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, uint material);
+void add_box(Scene& s, glm::vec3 center, glm::vec3 half, float angle, uint material);
+void add_room(Scene& s, float h, uint floor, uint ceiling, uint back, uint left, uint right, int front);
+
+// Orthographic cameras of half-extent `half`: looking straight down (-y, image up = -z)
+// from `position`, or looking down -z from (0, 0, z).
+CameraDesc orthographic_down(glm::vec3 position, float half);
+CameraDesc orthographic_front(float z, float half);
+
+// Material constructors following the contract (README.md)'s rules.
+Material make_diffuse(glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f), bool double_sided = false);
+Material make_metal(glm::vec3 f0, float roughness);  // roughness 0: mirror, else GGX alpha = r^2
+Material make_glass(glm::vec3 tint, float ior);
+// The full glTF metallic-roughness rule (transmission wins, then metallic 0 / 1 / between).
+Material make_gltf_material(glm::vec3 base, float metallic, float roughness, float transmission,
+                            float ior, glm::vec3 emission, bool double_sided);
+
+// The kernel camera for an image of the given aspect (width / height). With no camera in
+// the scene, a perspective camera on +Z frames the bounding box.
+Camera make_camera(const Scene& scene, float aspect);
+
+// Fills scene.lights with every emissive triangle and sphere and every point light, each
+// with the probability of being picked in proportion to its power (stage4), and sets
+// the primitives' light indices. load_scene() calls it.
+void build_light_table(Scene& scene);
+
+// The probability that light sampling picks the sky rather than the table: the sky's
+// power through the scene's bounding sphere against the lights' power (0 without a sky,
+// 1 without lights).
+float sky_pick_probability(const Scene& scene, glm::vec3 sky);
+
+// What the scene uses (issue: model only what a scene requires): shapes, material kinds,
+// light kinds and the sky, e.g. "triangles; diffuse, glass; emissive triangles, sky".
+uint scene_feature_mask(const Scene& scene, glm::vec3 sky);  // kFeature* bits
+std::string feature_names(uint mask);  // "triangles; diffuse; emissive triangles"
+std::string scene_features(const Scene& scene, glm::vec3 sky);  // both of the above
+
+// Whether the material emits light (any emission component above zero).
+bool is_emissive(const Material& m);
+
+}  // namespace pt

@@ -1,0 +1,56 @@
+// The C++ half of the GLSL/C++ subset in which the integrators are written (docs/README.md,
+// "One integrator source, two backends"). A stage's cpu_kernel.cpp includes this, opens
+// its own namespace, says `using namespace pt::glsl;` and #includes its integrator.glsl.
+//
+// Rules of the subset, kept by every file under common/shaders and stage*/integrator.glsl:
+//   free functions and plain structs only; no references, pointers or recursion (paths are
+//   loops with a throughput); float literals with an f suffix; no swizzles (single members
+//   .x .y .z .w only); structs built as Type(a, b, c); per-invocation state (rng_state) is
+//   a global, thread_local here; scene arrays are globals: SSBOs in GLSL, pointers here.
+#pragma once
+
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>       // and <type_traits>: intersect_cpu.h, #included inside a namespace
+#include <type_traits>
+
+#include <glm/glm.hpp>
+
+#include "labs/lab_hooks.h"  // the labs' stubs (docs/labs)
+#include "common/kernel/scene_types.h"
+
+namespace pt::glsl {
+using namespace glm;
+using namespace pt;  // the layouts and constants of scene_types.h
+using uint = std::uint32_t;
+
+// GLSL's abs() of floats: the sign bit cleared, as SPIR-V's FAbs does (abs(-0.0) is +0.0).
+// glm's abs is x >= 0 ? x : -x, which keeps -0.0 and which GCC compiles to a branch on the
+// sign: a ray's direction has random signs, so make_ray_shear() mispredicted about twice per
+// ray. std::abs for scalars (<cmath> also puts it in the global namespace), these overloads
+// for vectors; both are found before glm's templates.
+using std::abs;
+inline vec2 abs(vec2 v) {
+  return vec2(std::fabs(v.x), std::fabs(v.y));
+}
+inline vec3 abs(vec3 v) {
+  return vec3(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z));
+}
+inline vec4 abs(vec4 v) {
+  return vec4(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z), std::fabs(v.w));
+}
+
+// GLSL's atomic built-ins on buffer memory (the kernel's event counters).
+inline uint atomicAdd(uint& mem, uint data) {
+  return std::atomic_ref<uint>(mem).fetch_add(data);
+}
+inline uint atomicMin(uint& mem, uint data) {
+  std::atomic_ref<uint> a(mem);
+  uint old = a.load();
+  while (data < old && !a.compare_exchange_weak(old, data)) {
+  }
+  return old;
+}
+}  // namespace pt::glsl

@@ -1,0 +1,45 @@
+// The C++ side of the lab hooks (docs/labs/README.md; labs/lab_hooks.glsl): which lab's
+// stub replaces the real function, and the loud failure of a stub the student has not yet
+// written. The labs follow the article's four algorithms (Eq. 2, 3, 4 and 5).
+//   PT_LAB=N (CMake -DPT_LAB=N, the student's build): lab N's stub, fixed at compile time.
+//   PT_LAB_CHECK (CMake -DPT_LAB_CHECK=ON, the CI's check build): the stub of lab
+//   $PT_LAB_STUB, chosen at run time, so one build checks all four labs.
+#pragma once
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#ifndef PT_LAB
+#define PT_LAB 0
+#endif
+
+namespace pt::lab {
+
+// The lab whose stubs are in use: 0 for none (the normal build).
+inline int selected() {
+#if PT_LAB != 0
+  return PT_LAB;
+#elif defined(PT_LAB_CHECK)
+  static const int lab = [] {
+    const char* s = std::getenv("PT_LAB_STUB");
+    return s ? std::atoi(s) : 0;
+  }();
+  return lab;
+#else
+  return 0;
+#endif
+}
+
+// A stub's result: NaN, and one line on stderr the first time any stub of this lab runs.
+inline float not_written(int lab, const char* function) {
+  static std::atomic<bool> said[5] = {};
+  if (lab >= 0 && lab < 5 && !said[lab].exchange(true)) {
+    std::fprintf(stderr, "lab %d: %s is not written yet: write it in labs/lab%d.glsl (docs/labs/lab%d.md)\n", lab,
+                 function, lab, lab);
+  }
+  return std::numeric_limits<float>::quiet_NaN();
+}
+
+}  // namespace pt::lab
