@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "bench/bench.h"
+#include "cpu/cpu_backend.h"
 #include "common/base/error.h"
 #include "common/scene/scene_loading.h"
 #include "gpu/gpu_backend.h"

@@ -37,7 +37,6 @@ void run_error_study(const std::vector<Run>& runs, const Config& config) {
       s.spp = spp;
       s.seed = config.seed;
       s.roulette = kRouletteFixed;  // each stage as the article has it
-      s.label = "pt_bench";
       RenderResult r = render(backend, scene, s);
       ErrorMetrics e = compare_images(r.film.mean_rgb(), ref, config.size);
       double samples = double(config.size) * config.size * double(spp);

@@ -3,14 +3,15 @@
 // ray per invocation read from a buffer, the hit written out; no camera, sampling or film.
 // Comparable with the CPU row "intersect_scene (renderer)" and with the naive loop
 // (naive_raycast.comp). Article: the raycasting step (Eq. 2), its closest-hit search. The
-// rays sit in binding 3 (bindings.glsl's point_lights: two vec4 each, read here as origin
+// rays sit in binding 3 (gpu/kernel_bindings.glsl's point_lights: two vec4 each, read here as origin
 // and direction); params.counts.x is the triangle count, params.image.x the ray count.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common/kernel/scene_types.h"
-#include "common/kernel/bindings.glsl"
+#include "gpu/kernel_bindings.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "gpu/triangle_search.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 

@@ -63,7 +63,7 @@ std::vector<pt::bench::Run> read_runs(const std::string& path, const std::set<st
 }  // namespace
 
 int main(int argc, char** argv) {
-  return pt::guarded_main("pt_bench", [&] {
+  return pt::run_guarded("pt_bench", [&] {
     pt::bench::Config config;
     std::string runs_path = "bench/runs.txt";
     std::vector<std::string> scenes, stages, backends, sections{"error", "speed", "special"};

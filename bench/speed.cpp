@@ -23,10 +23,10 @@
 
 namespace {
 namespace kernel {  // the renderer's intersection code, as a CPU kernel compiles it
-using namespace pt::glsl;
-#include "common/kernel/bindings.glsl"
+#include "cpu/kernel_begin.h"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "cpu/kernel_support.h"
 }  // namespace kernel
 }  // namespace
 

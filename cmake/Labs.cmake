@@ -1,11 +1,15 @@
 # The labs (docs/labs/README.md): one per stage of the article (Eq. 2 to 5), each asking the
-# student to write the stage's central function in labs/labN.glsl.
-#   -DPT_LAB=N (1-4)       the student's build: lab N's functions are the student's versions
+# student to write a few kernel functions in labs/labN.glsl. The kernel declares those
+# functions and the build decides where their definitions come from: it writes
+# kernel_definitions.glsl, which every kernel includes (cpu/kernel_support.h, the GPU
+# kernels of cmake/PtStage.cmake), and picks stage1's integrator for lab 1.
+#   (default)              the reference definitions in common/kernel/.
+#   -DPT_LAB=N (1-4)       the student's build: lab N's functions come from labs/labN.glsl
 #                          (stubs that fail loudly until written), on both backends.
-#   -DPT_LAB_CHECK=ON      the CI's check build: the stub of lab $PT_LAB_STUB is chosen at run
-#                          time on the CPU, so one build shows every lab's tests failing
-#                          (tools/expect_lab_failure.sh). Use with PT_CPU_GENERAL_ONLY and build only
-#                          pt_tests.
+#   -DPT_LAB_CHECK=ON      the CI's check build: on the CPU, PT_LAB_STUB=N at run time picks
+#                          lab N's stubs (labs/check_definitions.h, labs/check_lab1.h), so one
+#                          build shows every lab's tests failing (tools/expect_lab_failure.sh).
+#                          Use with PT_CPU_GENERAL_ONLY and build only the tests.
 #   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once (all features) instead of
 #                          once per feature variant: a faster build (the sanitizer and
 #                          lab-check builds use it); the images are the same.
@@ -18,13 +22,38 @@ endif()
 if(PT_LAB AND PT_LAB_CHECK)
   message(FATAL_ERROR "PT_LAB and PT_LAB_CHECK exclude each other: use PT_LAB=N for a student's build, PT_LAB_CHECK=ON for the CI check")
 endif()
-# The shaders depend on this file, so changing PT_LAB recompiles them (file(CONFIGURE)
-# rewrites it only when the value changes).
-set(PT_LAB_STAMP ${PROJECT_BINARY_DIR}/pt_lab_mode.txt)
-file(CONFIGURE OUTPUT ${PT_LAB_STAMP} CONTENT "PT_LAB=${PT_LAB}\n")
-if(PT_LAB)
+
+# Which file defines the functions each lab asks for: the reference, or the student's.
+set(PT_KERNEL_GENERATED_DIR ${PROJECT_BINARY_DIR}/generated)
+set(definitions "")
+foreach(pair 2:common/kernel/uniform_hemisphere.glsl 3:common/kernel/cosine_hemisphere.glsl
+             4:common/kernel/triangle_light.glsl)
+  string(REGEX REPLACE ":.*" "" lab ${pair})
+  string(REGEX REPLACE ".*:" "" reference ${pair})
+  if(PT_LAB EQUAL lab)
+    string(APPEND definitions "#include \"labs/lab${lab}.glsl\"\n")
+  else()
+    string(APPEND definitions "#include \"${reference}\"\n")
+  endif()
+endforeach()
+if(PT_LAB_CHECK)
+  set(definitions "#ifdef __cplusplus\n#include \"labs/check_definitions.h\"\n#else\n${definitions}#endif\n")
+endif()
+# file(CONFIGURE) rewrites it only when it changes, so the kernels recompile only then.
+file(CONFIGURE OUTPUT ${PT_KERNEL_GENERATED_DIR}/kernel_definitions.glsl CONTENT
+"// Written by cmake/Labs.cmake (PT_LAB=${PT_LAB}, PT_LAB_CHECK=${PT_LAB_CHECK}): the definitions of the
+// kernel functions the labs ask for.
+#ifndef PT_KERNEL_DEFINITIONS_GLSL
+#define PT_KERNEL_DEFINITIONS_GLSL
+${definitions}#endif
+")
+if(PT_LAB OR PT_LAB_CHECK)
+  # The stubs' loud failure on the CPU (labs/lab_support.glsl) calls into this header.
+  add_compile_options(-include ${PROJECT_SOURCE_DIR}/labs/lab_hooks.h)
   add_compile_definitions(PT_LAB=${PT_LAB})
-  message(STATUS "Lab ${PT_LAB}: built with the student's labs/lab${PT_LAB}.glsl; grade with ctest -L lab${PT_LAB}")
+  if(PT_LAB)
+    message(STATUS "Lab ${PT_LAB}: built with the student's labs/lab${PT_LAB}.glsl; grade with ctest -L lab${PT_LAB}")
+  endif()
 endif()
 if(PT_LAB_CHECK)
   add_compile_definitions(PT_LAB_CHECK)

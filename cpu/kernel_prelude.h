@@ -1,8 +1,8 @@
 // The C++ half of the GLSL/C++ subset in which the integrators are written (docs/README.md,
-// "One integrator source, two backends"). A stage's cpu_kernel.cpp includes this, opens
-// its own namespace, says `using namespace pt::glsl;` and #includes its integrator.glsl.
+// "One integrator source, two backends"). A C++ kernel includes this, opens its own
+// namespace, and there includes kernel_begin.h, its integrator.glsl and kernel_end.h.
 //
-// Rules of the subset, kept by every file under common/shaders and stage*/integrator.glsl:
+// Rules of the subset, kept by every file under common/kernel and stage*/integrator.glsl:
 //   free functions and plain structs only; no references, pointers or recursion (paths are
 //   loops with a throughput); float literals with an f suffix; no swizzles (single members
 //   .x .y .z .w only); structs built as Type(a, b, c); per-invocation state (rng_state) is
@@ -18,7 +18,6 @@
 
 #include <glm/glm.hpp>
 
-#include "labs/lab_hooks.h"  // the labs' stubs (docs/labs)
 #include "common/kernel/scene_types.h"
 
 namespace pt::glsl {

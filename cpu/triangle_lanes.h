@@ -8,8 +8,9 @@
 // on a tie, is then what the loop over hit_triangle() finds, since that loop also keeps the
 // nearest hit whatever the order. Same t, barycentrics and triangle, bit for bit
 // (tests/common/test_intersect_soa.cpp). Why this layout: docs/results.md, "Speed targets".
-// No include guard of its own: intersect.glsl's guard covers it (a test that compiles the
-// kernels twice, as float and as double, undefines that one).
+// Included after common/kernel/intersect.glsl (kernel_end.h), whose nearest_triangle() it defines.
+#ifndef PT_CPU_TRIANGLE_LANES_H
+#define PT_CPU_TRIANGLE_LANES_H
 
 // `bytes` of floats side by side, and the matching lane masks (-1 or 0 per lane) and indices.
 template <int bytes> struct Lanes {
@@ -178,3 +179,12 @@ Hit hit_triangles_blocked(Ray ray, RayShear rs, Hit best) {
 #endif
   return nearest_triangle_lanes<16>(ray, rs, best);
 }
+
+// The CPU's nearest_triangle() (declared in intersect.glsl): the SIMD lanes when the
+// triangles are also laid out as arrays, else the loop in index order; the same hits.
+Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
+  if (triangle_soa != nullptr) return hit_triangles_blocked(ray, rs, best);
+  return nearest_triangle_in_order(ray, rs, best);
+}
+
+#endif  // PT_CPU_TRIANGLE_LANES_H

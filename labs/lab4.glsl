@@ -1,9 +1,12 @@
 // Lab 4 (docs/labs/lab4.md): light sampling, the article's Eq. (5) corrected (erratum 5):
 // the direct light from an emissive triangle needs the geometry term cos_y / d^2 and the
 // area pdf 1 / A that the printed formula lacks. Write the sample of one triangle light.
-// Built instead of sample_triangle_light of common/kernel/lights.glsl when you configure
+// Built instead of common/kernel/triangle_light.glsl when you configure
 // with -DPT_LAB=4. Graded by `ctest -L lab4`.
 // Written in the GLSL/C++ subset (docs/README.md): it runs on both backends.
+
+#include "labs/lab_support.glsl"
+#include "common/kernel/lights.glsl"
 
 // index: the triangle (triangles[index], corners p0 p1 p2, material materials[tri.info.x]);
 // p: the shading point; u: two uniform numbers in [0, 1); pick: the probability with which
@@ -14,8 +17,8 @@
 // cos_y the cosine at y between the triangle's normal and -wi. The triangle emits from its
 // front face only (cross(p1 - p0, p2 - p0) points out of it) unless emission.w > 0
 // (double-sided: use |cos_y|). Return no_light() when y does not face p.
-LightSample lab4_sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
+LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   // Your code here. Remove the line below when you are done.
-  float nan = PT_LAB_NOT_WRITTEN(4, lab4_sample_triangle_light) * u.x * pick;
+  float nan = PT_LAB_NOT_WRITTEN(4, sample_triangle_light) * u.x * pick;
   return LightSample(p, nan, vec3(nan), float(index) * nan);
 }

@@ -3,16 +3,12 @@
 // it meets shows its emission where it emits, otherwise its base colour, as if every
 // object emitted its own colour (the article's assumption; the contract (README.md) "stage1").
 // Written in the GLSL/C++ subset of cpu/kernel_prelude.h: both backends run it.
-#include "common/kernel/bindings.glsl"
 #include "common/kernel/rng.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
-#include "labs/lab_hooks.glsl"
-#include "labs/lab1.glsl"
 
 // Eq. (2): the radiance leaving the first surface towards the camera is its own.
 vec3 Li(Ray ray) {
-  PT_LAB_HOOK(1, lab1_Li(ray));  // lab 1 (docs/labs/lab1.md): the student's version
   Hit hit = intersect_scene(ray, kInfinity);
   if (hit.kind == kPrimNone) return vec3(params.sky);
   Surface surface = surface_at(ray, hit);
@@ -23,5 +19,3 @@ vec3 Li(Ray ray) {
   // The article's assumption: every other object "emits" its base colour.
   return vec3(material.base_color);
 }
-
-#include "common/kernel/render_pixel.glsl"

@@ -3,7 +3,6 @@
 // continue in ONE new direction (N = 1), drawn uniformly over the hemisphere for diffuse
 // and glossy surfaces, or the reflected/refracted direction of mirrors and glass; paths
 // end by Russian roulette. Written in the GLSL/C++ subset: both backends run this file.
-#include "common/kernel/bindings.glsl"
 #include "common/kernel/rng.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
@@ -11,13 +10,6 @@
 #include "common/kernel/bsdf.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/roulette.glsl"
-
-// Eq. (3) with N = 1: Lout = Le + (2 pi / N) f Lin cos. The article prints 1/(2 pi N)
-// (erratum 1); the uniform hemisphere pdf is 1/(2 pi), so the factor is 2 pi. The tests
-// build this file once with the printed factor to show the furnace test catches it.
-#ifndef PT_EQ3_FACTOR
-#define PT_EQ3_FACTOR (1.0f / uniform_hemisphere_pdf())  // 2 pi
-#endif
 
 vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path
@@ -47,9 +39,10 @@ vec3 Li(Ray ray) {
       wi = bounce.wi;
       beta *= bounce.weight;
     } else {
-      // Eq. (3): one direction uniform over the hemisphere, weighted (2 pi) f cos.
+      // Eq. (3) with N = 1: one direction uniform over the hemisphere, weighted
+      // (2 pi / N) f cos, 2 pi = 1 / pdf (erratum 1: the article prints 1 / (2 pi N)).
       wi = sample_uniform_hemisphere(rng_next_vec2());
-      beta *= PT_EQ3_FACTOR * eval_lobe(lobe, material, wo, wi) * wi.z;
+      beta *= (1.0f / uniform_hemisphere_pdf()) * eval_lobe(lobe, material, wo, wi) * wi.z;
     }
 
     float survive = russian_roulette(beta, params.options.y);
@@ -59,5 +52,3 @@ vec3 Li(Ray ray) {
   }
   return L;
 }
-
-#include "common/kernel/render_pixel.glsl"

@@ -1,14 +1,27 @@
-// stage2_montecarlo: Eq. (3) of the article, Monte Carlo path tracing with one uniformly
-// sampled direction per bounce and Russian roulette. Parse, load, render, write:
-// common/app/app.cpp run_stage(); the algorithm is integrator.glsl.
+// stage2_montecarlo: the article's Eq. (3), Monte Carlo path tracing with one uniformly
+// sampled direction per bounce and Russian roulette. The program reads the options, loads
+// the scene, chooses a backend, renders and writes the image; the algorithm itself is
+// integrator.glsl, compiled for both backends by the build.
 #include "common/app/app.h"
-#include "common/kernel/scene_types.h"
+#include "cpu/cpu_backend.h"
 #include "gpu/gpu_backend.h"
 #include "stage2_montecarlo/kernels.h"
 
 int main(int argc, char** argv) {
-  pt::StageInfo stage{"stage2_montecarlo", "Monte Carlo path tracing, Eq. (3), uniform hemisphere sampling", 64};
-  stage.has_roulette = true;
-  stage.default_roulette = pt::kRouletteFixed;  // the article's p = 1/2
-  return pt::run_stage(argc, argv, stage, stage2::kernels(), pt::gpu::create_backend);
+  const pt::Stage stage{pt::StageInfo{.name = "stage2_montecarlo",
+                                      .summary = "Monte Carlo path tracing, Eq. (3), uniform hemisphere sampling",
+                                      .default_spp = 64,
+                                      .has_roulette = true,
+                                      .default_roulette = pt::kRouletteFixed},
+                        stage2::kernels(),
+                        {pt::make_cpu_backend, pt::gpu::create_backend}};
+  return pt::run_guarded(stage.info.name, [&] {
+    std::optional<pt::Options> options = pt::read_options(argc, argv, stage);
+    if (!options) return 0;                  // --help was printed
+    const pt::OutputFile out(options->out);  // checked now, written after the render
+    pt::Scene scene = pt::load_stage_scene(*options, stage);
+    std::unique_ptr<pt::Backend> backend = pt::choose_backend(*options, stage);
+    pt::RenderResult result = pt::render_frame(backend, scene, *options, stage);
+    return pt::write_result(out, *options, *backend, scene, result, stage);
+  });
 }

@@ -3,7 +3,6 @@
 // proportion to the BRDF (cosine lobe for diffuse, GGX visible normals for metal, the
 // delta direction of mirror and glass) and each contribution is divided by its pdf.
 // Written in the GLSL/C++ subset: both backends run this file.
-#include "common/kernel/bindings.glsl"
 #include "common/kernel/rng.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
@@ -41,14 +40,8 @@ vec3 Li(Ray ray) {
       beta *= bounce.weight;
     } else {
       // Eq. (4), corrected (erratum 2): draw wi with density pdf, weight f cos / pdf.
-      // (The tests build this file with PT_EQ4_PRINTED, the printed factor 1/(2 pi) and no
-      // pdf, to show that the furnace test fails it.)
       LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());
-#ifdef PT_EQ4_PRINTED
-      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / (2.0f * kPi);
-#else
       vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
-#endif
       // Never divide by a zero pdf: such a sample ends the path, and is counted.
       if (!(s.pdf > 0.0f) || !is_finite(weight)) {
         atomicAdd(counters[kCounterZeroPdf], 1u);
@@ -65,5 +58,3 @@ vec3 Li(Ray ray) {
   }
   return L;
 }
-
-#include "common/kernel/render_pixel.glsl"

@@ -1,14 +1,26 @@
-// stage3_importance: Eq. (4) of the article, path tracing with BRDF importance sampling
-// (each direction drawn in proportion to the BRDF, each contribution divided by its pdf).
-// Parse, load, render, write: common/app/app.cpp run_stage(); the algorithm is integrator.glsl.
+// stage3_importance: the article's Eq. (4), BRDF importance sampling. The program reads
+// the options, loads the scene, chooses a backend, renders and writes the image; the
+// algorithm itself is integrator.glsl, compiled for both backends by the build.
 #include "common/app/app.h"
-#include "common/kernel/scene_types.h"
+#include "cpu/cpu_backend.h"
 #include "gpu/gpu_backend.h"
 #include "stage3_importance/kernels.h"
 
 int main(int argc, char** argv) {
-  pt::StageInfo stage{"stage3_importance", "BRDF importance sampling, Eq. (4): f Lin cos / pdf", 64};
-  stage.has_roulette = true;
-  stage.default_roulette = pt::kRouletteThroughput;  // bounded variance at any albedo
-  return pt::run_stage(argc, argv, stage, stage3::kernels(), pt::gpu::create_backend);
+  const pt::Stage stage{pt::StageInfo{.name = "stage3_importance",
+                                      .summary = "BRDF importance sampling, Eq. (4): f Lin cos / pdf",
+                                      .default_spp = 64,
+                                      .has_roulette = true,
+                                      .default_roulette = pt::kRouletteThroughput},
+                        stage3::kernels(),
+                        {pt::make_cpu_backend, pt::gpu::create_backend}};
+  return pt::run_guarded(stage.info.name, [&] {
+    std::optional<pt::Options> options = pt::read_options(argc, argv, stage);
+    if (!options) return 0;                  // --help was printed
+    const pt::OutputFile out(options->out);  // checked now, written after the render
+    pt::Scene scene = pt::load_stage_scene(*options, stage);
+    std::unique_ptr<pt::Backend> backend = pt::choose_backend(*options, stage);
+    pt::RenderResult result = pt::render_frame(backend, scene, *options, stage);
+    return pt::write_result(out, *options, *backend, scene, result, stage);
+  });
 }

@@ -3,7 +3,6 @@
 // direct light comes from a shadow ray to a point sampled on a light (soft shadows), the
 // indirect light from one BRDF-sampled ray (as stage3) whose hit no longer adds emission.
 // Written in the GLSL/C++ subset: both backends run this file.
-#include "common/kernel/bindings.glsl"
 #include "common/kernel/rng.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
@@ -53,13 +52,7 @@ vec3 Li(Ray ray) {
       vec3 f = eval_lobe(lobe, material, wo, wl);
       if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f &&
           !occluded(surface.p, surface.n, ls)) {
-#ifdef PT_EQ5_PRINTED
-        // As printed: f Le cos_x summed over the lights, no geometry term, no pdf (the
-        // tests build this to show Lambert's formula catches it).
-        L += beta * f * ls.weight * ls.pdf * wl.z;
-#else
         L += beta * f * ls.weight * wl.z;
-#endif
       }
       // Indirect light: one BRDF-sampled direction, as in stage3 (Eq. 4).
       LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());
@@ -81,5 +74,3 @@ vec3 Li(Ray ray) {
   }
   return L;
 }
-
-#include "common/kernel/render_pixel.glsl"

@@ -1,16 +1,28 @@
-// stage4_direct_indirect: Eq. (5) of the article, direct light by light sampling (shadow
-// rays to points sampled on the lights: soft shadows) plus indirect light by BRDF
-// sampling. Parse, load, render, write: common/app/app.cpp run_stage(); the algorithm is
-// integrator.glsl.
+// stage4_direct_indirect: the article's Eq. (5), direct light by light sampling plus
+// indirect light. The program reads the options, loads the scene, chooses a backend,
+// renders and writes the image; the algorithm itself is integrator.glsl, compiled for both
+// backends by the build.
 #include "common/app/app.h"
-#include "common/kernel/scene_types.h"
+#include "cpu/cpu_backend.h"
 #include "gpu/gpu_backend.h"
 #include "stage4_direct_indirect/kernels.h"
 
 int main(int argc, char** argv) {
-  pt::StageInfo stage{"stage4_direct_indirect", "direct + indirect light, Eq. (5): light sampling", 64};
-  stage.has_roulette = true;
-  stage.default_roulette = pt::kRouletteThroughput;
-  stage.sees_point_lights = true;
-  return pt::run_stage(argc, argv, stage, stage4::kernels(), pt::gpu::create_backend);
+  const pt::Stage stage{pt::StageInfo{.name = "stage4_direct_indirect",
+                                      .summary = "direct + indirect light, Eq. (5): light sampling",
+                                      .default_spp = 64,
+                                      .has_roulette = true,
+                                      .default_roulette = pt::kRouletteThroughput,
+                                      .sees_point_lights = true},
+                        stage4::kernels(),
+                        {pt::make_cpu_backend, pt::gpu::create_backend}};
+  return pt::run_guarded(stage.info.name, [&] {
+    std::optional<pt::Options> options = pt::read_options(argc, argv, stage);
+    if (!options) return 0;                  // --help was printed
+    const pt::OutputFile out(options->out);  // checked now, written after the render
+    pt::Scene scene = pt::load_stage_scene(*options, stage);
+    std::unique_ptr<pt::Backend> backend = pt::choose_backend(*options, stage);
+    pt::RenderResult result = pt::render_frame(backend, scene, *options, stage);
+    return pt::write_result(out, *options, *backend, scene, result, stage);
+  });
 }

@@ -1,19 +1,19 @@
-// The pieces of a stage's main() (see app.h).
+// The steps of a stage's main() (app.h).
 #include "common/app/app.h"
 
 #include <cstdio>
 #include <filesystem>
 #include <new>
-#include <optional>
 
 #include "common/app/checkpoint.h"
 #include "common/base/error.h"
 #include "common/render/interrupt.h"
+#include "common/render/memory.h"
 #include "common/scene/scene_loading.h"
 
 namespace pt {
 
-int guarded_main(const char* stage, const std::function<int()>& body) {
+int run_guarded(const char* stage, const std::function<int()>& body) {
   try {
     return body();
   } catch (const Error& e) {
@@ -28,160 +28,119 @@ int guarded_main(const char* stage, const std::function<int()>& body) {
   }
 }
 
-int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels& kernels,
-              GpuBackendFactory make_gpu) {
-  return guarded_main(stage.name, [&] {
-    // Parse: the options of the contract (README.md).
-    std::optional<Options> options = parse_options(argc, argv, stage);
-    if (!options) return 0;  // --help
-    install_interrupt_handlers();
-    OutputFile out(options->out);  // checked now, written after the render
-    check_image_memory(options->width, options->height, options->resume);
-    // Load: a glTF file or a built-in scene.
-    Scene scene = load_scene(options->scene);
-    if (!scene.point_lights.empty() && !stage.sees_point_lights) {
-      std::fprintf(stderr, "%s: the scene's %zu point light(s) are delta lights: only light sampling (stage4) sees them\n",
-                   stage.name, scene.point_lights.size());
-    }
-    // Render: passes on the CPU or the GPU, from a checkpoint if asked, saving one if asked.
-    RenderSettings settings = render_settings(*options, stage.name);
-    const std::uint64_t key = render_key(stage.name, scene, settings);
-    const std::string checkpoint = options->out + ".ckpt";
-    std::optional<RenderResult> resumed;
-    if (options->resume) {
-      resumed = load_checkpoint(options->resume_path, key, stage.name, options->width, options->height);
-      if (resumed->film.spp() > settings.spp) {
-        throw Error(kExitBadOption, "checkpoint '" + options->resume_path + "' has " +
-                                        std::to_string(resumed->film.spp()) + " spp, more than --spp " +
-                                        std::to_string(settings.spp) + "; ask for at least that many");
-      }
-      settings.resume = &*resumed;
-    }
-    if (options->checkpoint > 0.0) {
-      settings.save_seconds = options->checkpoint;
-      // A checkpoint that cannot be written (a full disk) must not end the render.
-      settings.save = [&](const RenderResult& state) {
-        try {
-          save_checkpoint(checkpoint, key, stage.name, state);
-        } catch (const Error& e) {
-          warn_once(std::string(e.what()) + "; the render goes on without checkpoints");
-        }
-      };
-    }
-    std::unique_ptr<Backend> backend = make_backend(*options, kernels, make_gpu);
-    RenderResult result = render(*backend, scene, settings);
-    if (!result.device_error.empty() && options->backend == "auto" && backend->kind() == "gpu") {
-      // The device failed: never retried; the CPU goes on from the samples done.
-      std::fprintf(stderr, "%s: %s; --backend auto falls back to the CPU and goes on from the %llu spp done\n",
-                   stage.name, result.device_error.c_str(), (unsigned long long)result.film.spp());
-      backend = make_cpu_backend(kernels, options->threads);
-      RenderResult so_far = std::move(result);
-      settings.resume = &so_far;
-      result = render(*backend, scene, settings);
-    }
-    if (!result.device_error.empty()) {
-      // --backend gpu: the samples done so far are written, then the device's error, exit 4.
-      if (result.film.spp() > 0) {
-        out.write(result.film.mean_rgb(), options->width, options->height,
-                  image_metadata(stage.name, *options, *backend, result), options->exposure);
-      }
-      std::fprintf(stderr, "%s: %s; %s\n", stage.name, result.device_error.c_str(),
-                   result.film.spp() > 0 ? ("the " + std::to_string(result.film.spp()) + " spp done are in " +
-                                            options->out).c_str()
-                                         : "nothing was rendered");
-      return int(kExitNoDevice);
-    }
-    // Write: the image atomically, then the one summary line.
-    out.write(result.film.mean_rgb(), options->width, options->height,
-              image_metadata(stage.name, *options, *backend, result), options->exposure);
-    // A finished render needs its checkpoint no more.
-    if (result.film.spp() >= settings.spp && (options->checkpoint > 0.0 || options->resume)) {
-      std::error_code ignored;
-      if (std::filesystem::is_regular_file(checkpoint, ignored)) std::filesystem::remove(checkpoint, ignored);
-    }
-    std::string tags = "[scene: " + scene_features(scene, options->sky) + "]";
-    if (options->all_features) tags += " [kernel: general, --all-features]";
-    std::printf("%s\n", summary_line(stage.name, *backend, result, tags).c_str());
-    if (int signo = interrupt_signal()) {
-      std::fprintf(stderr, "%s: interrupted after %llu of the samples per pixel asked for; the image has them\n",
-                   stage.name, (unsigned long long)result.film.spp());
-      return 128 + signo;
-    }
-    return 0;
-  });
+std::optional<Options> read_options(int argc, char** argv, const Stage& stage) {
+  std::optional<Options> options = parse_options(argc, argv, stage.info);
+  if (!options) return options;
+  install_interrupt_handlers();
+  check_image_memory(options->render.width, options->render.height, options->resume);
+  return options;
 }
 
-std::unique_ptr<Backend> make_backend(const Options& options, const StageKernels& kernels,
-                                      GpuBackendFactory make_gpu) {
-  if (options.backend == "cpu") return make_cpu_backend(kernels, options.threads);
-  if (options.backend == "gpu") return make_gpu(kernels, options.device);
+Scene load_stage_scene(const Options& options, const Stage& stage) {
+  Scene scene = load_scene(options.scene);
+  if (!scene.point_lights.empty() && !stage.info.sees_point_lights) {
+    std::fprintf(stderr, "%s: the scene's %zu point light(s) are delta lights: only light sampling (stage4) sees them\n",
+                 stage.info.name, scene.point_lights.size());
+  }
+  return scene;
+}
+
+std::unique_ptr<Backend> choose_backend(const Options& options, const Stage& stage) {
+  const Backends& b = stage.backends;
+  if (options.backend == "cpu") return b.cpu(stage.kernels, options.threads);
+  if (options.backend == "gpu") return b.gpu(stage.kernels, options.device);
   try {
-    return make_gpu(kernels, options.device);
+    return b.gpu(stage.kernels, options.device);
   } catch (const Error& e) {
     if (e.code() != kExitNoDevice) throw;
-    std::fprintf(stderr, "%s: %s; --backend auto falls back to the CPU\n", kernels.name, e.what());
-    return make_cpu_backend(kernels, options.threads);
+    std::fprintf(stderr, "%s: %s; --backend auto falls back to the CPU\n", stage.info.name, e.what());
+    return b.cpu(stage.kernels, options.threads);
   }
 }
 
-RenderSettings render_settings(const Options& o, const char* stage) {
-  RenderSettings s;
-  s.width = o.width;
-  s.height = o.height;
-  s.spp = o.spp;
-  s.seed = o.seed;
-  s.sky = o.sky;
-  s.roulette = o.roulette;
-  s.time_budget = o.time_budget;
-  s.all_features = o.all_features;
-  s.target_error = o.target_error;
-  s.depth_cap = o.depth_cap;
-  s.progress = true;
-  s.label = stage;
-  return s;
+namespace {
+
+std::string checkpoint_path(const Options& options) { return options.out + ".ckpt"; }
+
+// --resume: the saved state, checked against this render.
+RenderResult resumed_state(const Options& options, const Stage& stage, std::uint64_t key) {
+  const RenderSettings& s = options.render;
+  RenderResult state = load_checkpoint(options.resume_path, key, stage.info.name, s.width, s.height);
+  if (state.film.spp() > s.spp) {
+    throw Error(kExitBadOption, "checkpoint '" + options.resume_path + "' has " + std::to_string(state.film.spp()) +
+                                    " spp, more than --spp " + std::to_string(s.spp) +
+                                    "; ask for at least that many");
+  }
+  return state;
 }
 
-ImageMetadata image_metadata(const char* stage, const Options& o, const Backend& backend,
-                             const RenderResult& r) {
-  ImageMetadata m;
-  m.stage = stage;
-  m.backend = backend.kind() + " (" + backend.device_name() + ")";
-  m.scene = o.scene;
-  m.spp = r.film.spp();
-  m.seed = o.seed;
-  m.seconds = r.seconds;
-  return m;
+}  // namespace
+
+RenderResult render_frame(std::unique_ptr<Backend>& backend, const Scene& scene, const Options& options,
+                          const Stage& stage) {
+  const char* name = stage.info.name;
+  const std::uint64_t key = render_key(name, scene, options.render);
+  RenderHooks hooks;
+  hooks.progress = true;
+  hooks.label = name;
+  std::optional<RenderResult> resumed;
+  if (options.resume) hooks.resume = &resumed.emplace(resumed_state(options, stage, key));
+  if (options.checkpoint > 0.0) {
+    hooks.save_seconds = options.checkpoint;
+    // A checkpoint that cannot be written (a full disk) must not end the render.
+    hooks.save = [&, path = checkpoint_path(options)](const RenderResult& state) {
+      try {
+        save_checkpoint(path, key, name, state);
+      } catch (const Error& e) {
+        warn_once(std::string(e.what()) + "; the render goes on without checkpoints");
+      }
+    };
+  }
+  RenderResult result = render(*backend, scene, options.render, hooks);
+  if (!result.device_error.empty() && options.backend == "auto" && backend->kind() == "gpu") {
+    // The device failed: never retried; the CPU goes on from the samples done.
+    std::fprintf(stderr, "%s: %s; --backend auto falls back to the CPU and goes on from the %llu spp done\n", name,
+                 result.device_error.c_str(), (unsigned long long)result.film.spp());
+    backend = stage.backends.cpu(stage.kernels, options.threads);
+    RenderResult so_far = std::move(result);
+    hooks.resume = &so_far;
+    result = render(*backend, scene, options.render, hooks);
+  }
+  return result;
 }
 
-std::string summary_line(const char* stage, const Backend& backend, const RenderResult& r,
-                         const std::string& tags) {
-  const Film& f = r.film;
-  double samples = double(f.width()) * double(f.height()) * double(f.spp());
-  char line[512];
-  std::snprintf(line, sizeof line, "%s: backend %s (%s), %dx%d, %llu spp, %.3f s, %.3g samples/s", stage,
-                backend.kind().c_str(), backend.device_name().c_str(), f.width(), f.height(),
-                (unsigned long long)f.spp(), r.seconds, r.seconds > 0.0 ? samples / r.seconds : 0.0);
-  std::string s = line;
-  if (f.spp() >= 2) {
-    std::snprintf(line, sizeof line, ", estimated relative error %.2g", f.relative_standard_error());
-    s += line;
+int write_result(const OutputFile& out, const Options& options, const Backend& backend, const Scene& scene,
+                 const RenderResult& result, const Stage& stage) {
+  const char* name = stage.info.name;
+  const std::uint64_t spp = result.film.spp();
+  if (!result.device_error.empty()) {
+    // --backend gpu: the samples done so far are written, then the device's error, exit 4.
+    if (spp > 0) {
+      out.write(result.film.mean_rgb(), options.render.width, options.render.height,
+                image_metadata(name, options, backend, result), options.exposure);
+    }
+    std::string done = spp > 0 ? "the " + std::to_string(spp) + " spp done are in " + options.out : "nothing was rendered";
+    std::fprintf(stderr, "%s: %s; %s\n", name, result.device_error.c_str(), done.c_str());
+    return int(kExitNoDevice);
   }
-  // Events that are rare and deserve a word: each is said once, with its count.
-  const RenderCounters& c = r.counters;
-  if (c.non_finite) {
-    std::uint32_t p = c.first_non_finite_pixel;
-    s += ", " + std::to_string(c.non_finite) + " NaN/Inf samples dropped (first at pixel " +
-         std::to_string(p % std::uint32_t(f.width())) + "," + std::to_string(p / std::uint32_t(f.width())) + ")";
+  // The image atomically, then the one summary line.
+  out.write(result.film.mean_rgb(), options.render.width, options.render.height,
+            image_metadata(name, options, backend, result), options.exposure);
+  // A finished render needs its checkpoint no more.
+  if (spp >= options.render.spp && (options.checkpoint > 0.0 || options.resume)) {
+    std::error_code ignored;
+    const std::string checkpoint = checkpoint_path(options);
+    if (std::filesystem::is_regular_file(checkpoint, ignored)) std::filesystem::remove(checkpoint, ignored);
   }
-  if (c.zero_pdf) s += ", " + std::to_string(c.zero_pdf) + " paths ended by a zero pdf";
-  if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
-  if (c.loop_limit) {
-    s += ", WRONG IMAGE: the Vulkan driver cut the loops of " + std::to_string(c.loop_limit) +
-         " pixel passes short (lavapipe stops a kernel after 65535 loop iterations; fewer triangles, "
-         "a lower albedo or --backend cpu)";
+  std::string tags = "[scene: " + scene_features(scene, options.render.sky) + "]";
+  if (options.render.all_features) tags += " [kernel: general, --all-features]";
+  std::printf("%s\n", summary_line(name, backend, result, tags).c_str());
+  if (int signo = interrupt_signal()) {
+    std::fprintf(stderr, "%s: interrupted after %llu of the samples per pixel asked for; the image has them\n", name,
+                 (unsigned long long)spp);
+    return 128 + signo;
   }
-  if (!tags.empty()) s += " " + tags;
-  return s;
+  return 0;
 }
 
 }  // namespace pt

@@ -1,35 +1,59 @@
-// What a stage's main() is made of: parse, load, render, write (the contract (README.md), "Programs").
-// Errors anywhere below become one line on stderr and the contract's exit code.
+// What a stage's main() is made of (the contract (README.md), "Programs"): read the options,
+// load the scene, choose the backend, render, write the image. Each step is one function;
+// errors anywhere become one line on stderr and the contract's exit code (run_guarded).
 #pragma once
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
-#include "common/render/backend.h"
 #include "common/app/image_output.h"
 #include "common/app/options.h"
+#include "common/render/backend.h"
 #include "common/render/render.h"
+#include "common/scene/scene.h"
 
 namespace pt {
 
-// Creates the Vulkan backend (gpu/gpu_backend.h) or throws pt::Error(kExitNoDevice).
-using GpuBackendFactory = std::unique_ptr<Backend> (*)(const StageKernels& kernels, const std::string& device);
+// The two backends a stage program is linked with (cpu/cpu_backend.h, gpu/gpu_backend.h).
+struct Backends {
+  std::unique_ptr<Backend> (*cpu)(const StageKernels& kernels, unsigned threads);
+  // Throws pt::Error(kExitNoDevice) when no usable Vulkan device exists.
+  std::unique_ptr<Backend> (*gpu)(const StageKernels& kernels, const std::string& device);
+};
 
-// A whole stage program: parse the options, check the output, load the scene, render on
-// the chosen backend, write the image, print the summary line. Returns the exit code.
-int run_stage(int argc, char** argv, const StageInfo& stage, const StageKernels& kernels,
-              GpuBackendFactory make_gpu);
+// A stage program: what its command line says about it, its kernel, its backends.
+struct Stage {
+  StageInfo info;
+  StageKernels kernels;
+  Backends backends;
+};
 
 // Runs body; a pt::Error (or any other exception) becomes "<stage>: <message>" on stderr
 // and its exit code.
-int guarded_main(const char* stage, const std::function<int()>& body);
+int run_guarded(const char* stage, const std::function<int()>& body);
+
+// The options (nothing for --help, which is printed), with Ctrl-C handlers installed and
+// the image's memory checked.
+std::optional<Options> read_options(int argc, char** argv, const Stage& stage);
+
+// The scene of --scene, with a word on stderr about lights this stage cannot see.
+Scene load_stage_scene(const Options& options, const Stage& stage);
 
 // --backend cpu, gpu, or auto (gpu when a device exists, else cpu, saying so on stderr).
-std::unique_ptr<Backend> make_backend(const Options& options, const StageKernels& kernels,
-                                      GpuBackendFactory make_gpu);
+std::unique_ptr<Backend> choose_backend(const Options& options, const Stage& stage);
 
-RenderSettings render_settings(const Options& options, const char* stage);
+// Renders in passes, from a checkpoint with --resume and saving one with --checkpoint. When
+// the device fails under --backend auto, the CPU goes on from the samples done (backend
+// is then the CPU's).
+RenderResult render_frame(std::unique_ptr<Backend>& backend, const Scene& scene, const Options& options,
+                          const Stage& stage);
+
+// Writes the image (also the samples done before a device failed), removes a finished
+// render's checkpoint, prints the summary line; returns the exit code.
+int write_result(const OutputFile& out, const Options& options, const Backend& backend, const Scene& scene,
+                 const RenderResult& result, const Stage& stage);
 
 // What the image file records about the render (stage, spp, seed, backend, time).
 ImageMetadata image_metadata(const char* stage, const Options& options, const Backend& backend,

@@ -29,7 +29,7 @@ glm::vec3 parse_rgb(const std::string& text, const std::string& option) {
 
 std::optional<Options> parse_options(int argc, char** argv, const StageInfo& stage) {
   Options o;
-  o.spp = stage.default_spp;
+  o.render.spp = stage.default_spp;
   o.out = std::string("out/") + stage.name + ".png";
   std::string sky = "0,0,0";
 
@@ -39,10 +39,10 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.footer(footer);
   app.get_formatter()->column_width(30);
   app.add_option("--scene", o.scene, "glTF 2.0 file (.gltf, .glb) or builtin:NAME")->capture_default_str();
-  app.add_option("--width", o.width, "image width in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
-  app.add_option("--height", o.height, "image height in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
-  app.add_option("--spp", o.spp, "samples per pixel")->capture_default_str()->check(CLI::Range(std::uint64_t(1), std::uint64_t(0xffffffffu)));
-  app.add_option("--seed", o.seed, "random seed: same seed, options and backend give the same image")->capture_default_str();
+  app.add_option("--width", o.render.width, "image width in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
+  app.add_option("--height", o.render.height, "image height in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
+  app.add_option("--spp", o.render.spp, "samples per pixel")->capture_default_str()->check(CLI::Range(std::uint64_t(1), std::uint64_t(0xffffffffu)));
+  app.add_option("--seed", o.render.seed, "random seed: same seed, options and backend give the same image")->capture_default_str();
   app.add_option("--backend", o.backend, "auto (gpu if a Vulkan device exists, else cpu), cpu or gpu")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
   app.add_option("--device", o.device, "Vulkan device: index or part of its name (env PT_VULKAN_DEVICE)");
@@ -50,13 +50,13 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
   app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
   app.add_option("--threads", o.threads, "CPU backend threads (0 = all cores)")->capture_default_str();
-  app.add_option("--time-budget", o.time_budget,
+  app.add_option("--time-budget", o.render.time_budget,
                  "render in passes until SECONDS are spent (--spp, if given, still caps the samples)")
       ->check(CLI::Range(0.0, 1e9));
-  app.add_option("--target-error", o.target_error,
+  app.add_option("--target-error", o.render.target_error,
                  "stop once the estimated relative standard error of the image mean is below E")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_flag("--all-features", o.all_features,
+  app.add_flag("--all-features", o.render.all_features,
                "run the general kernel instead of the one specialised to the scene's features");
   app.add_option("--checkpoint", o.checkpoint,
                  "save the running render to <out>.ckpt every SECONDS (and at Ctrl-C); removed when it ends")
@@ -69,7 +69,7 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   if (stage.has_roulette) {
     app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
         ->capture_default_str()->check(CLI::IsMember({"fixed", "throughput"}));
-    app.add_option("--depth-cap", o.depth_cap, "bounces after which a path is stopped and counted (a safety net)")
+    app.add_option("--depth-cap", o.render.depth_cap, "bounces after which a path is stopped and counted (a safety net)")
         ->capture_default_str()->check(CLI::Range(1u, 1000000u));
   }
 
@@ -82,12 +82,12 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     std::string what = e.what();
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
-  o.sky = parse_rgb(sky, "--sky");
+  o.render.sky = parse_rgb(sky, "--sky");
   o.resume = app.count("--resume") > 0;
   if (o.resume && o.resume_path.empty()) o.resume_path = o.out + ".ckpt";
   // With a time or error target and no --spp, the samples are not capped.
-  if ((o.time_budget > 0.0 || o.target_error > 0.0) && app.count("--spp") == 0) o.spp = 0xffffffffu;
-  o.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
+  if ((o.render.time_budget > 0.0 || o.render.target_error > 0.0) && app.count("--spp") == 0) o.render.spp = 0xffffffffu;
+  o.render.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");
   return o;
 }

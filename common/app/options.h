@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "common/render/render.h"
+
 namespace pt {
 
 // What differs between the stages' command lines.
@@ -21,24 +23,15 @@ struct StageInfo {
 
 struct Options {
   std::string scene = "builtin:cornell";  // glTF path or builtin:NAME
-  int width = 512;
-  int height = 512;
-  std::uint64_t spp = 1;
-  std::uint32_t seed = 0;
-  std::string backend = "auto";  // auto, cpu or gpu
-  std::string device;            // GPU choice: index or part of the name (or PT_VULKAN_DEVICE)
-  std::string out;               // default out/<stage>.png
-  glm::vec3 sky{0.0f};           // radiance of rays leaving the scene
-  float exposure = 0.0f;         // stops, for .png output
-  unsigned threads = 0;          // CPU threads, 0 = all cores
-  std::uint32_t roulette = 0;    // kRouletteFixed or kRouletteThroughput (--rr)
-  std::uint32_t depth_cap = 1000;  // a safety net far beyond what roulette reaches
-  double time_budget = 0.0;        // --time-budget SECONDS (0: none)
-  double target_error = 0.0;       // --target-error E (0: none)
-  bool all_features = false;       // --all-features: the general kernel, for comparison
-  double checkpoint = 0.0;         // --checkpoint SECONDS: save <out>.ckpt this often (0: never)
-  bool resume = false;             // --resume [PATH]: continue a checkpoint
-  std::string resume_path;         // its path (default <out>.ckpt)
+  RenderSettings render;                  // size, spp, seed, sky, roulette, stopping rules
+  std::string backend = "auto";           // auto, cpu or gpu
+  std::string device;                     // GPU choice: index or part of the name (or PT_VULKAN_DEVICE)
+  std::string out;                        // default out/<stage>.png
+  float exposure = 0.0f;                  // stops, for .png output
+  unsigned threads = 0;                   // CPU threads, 0 = all cores
+  double checkpoint = 0.0;                // --checkpoint SECONDS: save <out>.ckpt this often (0: never)
+  bool resume = false;                    // --resume [PATH]: continue a checkpoint
+  std::string resume_path;                // its path (default <out>.ckpt)
 };
 
 // Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with

@@ -5,6 +5,8 @@
 #ifndef PT_BSDF_GLSL
 #define PT_BSDF_GLSL
 
+#include "common/kernel/sampling.glsl"
+
 // Le of Eq. (1): a surface emits from its front face only (counter-clockwise winding, the
 // geometric normal's side), or from both faces when its material is double-sided.
 vec3 emitted_radiance(Material m, bool front) {

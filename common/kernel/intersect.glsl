@@ -6,6 +6,8 @@
 #ifndef PT_INTERSECT_GLSL
 #define PT_INTERSECT_GLSL
 
+#include "common/kernel/camera.glsl"
+
 const float kInfinity = 3.402823466e38f;  // the largest float: "no hit yet"
 
 struct Hit {
@@ -107,9 +109,17 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   return Hit(t, v * inv_det, w * inv_det, index, kPrimTriangle);
 }
 
-#ifdef __cplusplus
-#include "cpu/triangle_lanes.h"  // hit_triangles_blocked: the CPU's SIMD filter
-#endif
+// The nearest hit of `best` and every triangle, tested in index order: the article's
+// brute-force search.
+Hit nearest_triangle_in_order(Ray ray, RayShear rs, Hit best) {
+  for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
+  return best;
+}
+
+// The nearest hit of `best` and every triangle, as the backend searches them: the loop
+// above on the GPU (gpu/triangle_search.glsl), SIMD lanes on the CPU (cpu/triangle_lanes.h),
+// with the same hits bit for bit. Defined by the backend after this file.
+Hit nearest_triangle(Ray ray, RayShear rs, Hit best);
 
 // Rounding error of a sphere root, in units of the numbers it was computed from: a few
 // float epsilons for the rounding of f = origin - centre, of the origin itself (the last
@@ -146,14 +156,7 @@ Hit hit_sphere(Ray ray, uint index, Hit best) {
 Hit intersect_scene(Ray ray, float t_max) {
   Hit best = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
   RayShear rs = make_ray_shear(ray.dir);
-  if (has_feature(kFeatureTriangles)) {
-#ifdef __cplusplus
-    if (triangle_soa != nullptr) {
-      best = hit_triangles_blocked(ray, rs, best);  // the same hits, found faster
-    } else
-#endif
-    for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
-  }
+  if (has_feature(kFeatureTriangles)) best = nearest_triangle(ray, rs, best);
   if (has_feature(kFeatureSpheres)) {
     for (uint i = 0u; i < params.counts.y; i++) best = hit_sphere(ray, i, best);
   }

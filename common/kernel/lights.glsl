@@ -7,6 +7,10 @@
 #ifndef PT_LIGHTS_GLSL
 #define PT_LIGHTS_GLSL
 
+#include "common/kernel/sampling.glsl"
+#include "common/kernel/intersect.glsl"
+#include "common/kernel/spawn.glsl"
+
 struct LightSample {
   vec3 wi;         // unit direction from the shading point towards the light
   float dist;      // distance to the light point (kInfinity for the sky)
@@ -30,33 +34,9 @@ uint pick_light(float u) {
   return lo;
 }
 
-#include "labs/lab_hooks.glsl"
-#include "labs/lab4.glsl"
-
-// A point uniform on the triangle: density 1 / area (Turk's square-root mapping).
-LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
-  PT_LAB_HOOK(4, lab4_sample_triangle_light(index, p, u, pick));  // lab 4 (docs/labs/lab4.md)
-  Triangle tri = triangles[index];
-  vec3 p0 = vec3(tri.p0);
-  vec3 p1 = vec3(tri.p1);
-  vec3 p2 = vec3(tri.p2);
-  float su = sqrt(u.x);
-  vec3 y = (1.0f - su) * p0 + su * (1.0f - u.y) * p1 + su * u.y * p2;
-  vec3 c = cross(p1 - p0, p2 - p0);
-  float area = 0.5f * length(c);
-  vec3 n = normalize(c);
-  vec3 d = y - p;
-  float dist2 = dot(d, d);
-  float dist = sqrt(dist2);
-  vec3 wi = d / dist;
-  Material m = materials[tri.info.x];
-  float cos_y = dot(-wi, n);
-  // Le from the front face only, unless double-sided (the contract (README.md)).
-  if (m.emission.w > 0.0f) cos_y = abs(cos_y);
-  if (!(cos_y > 0.0f) || !(dist > 0.0f)) return no_light();
-  float pdf = dist2 / (cos_y * area) * pick;  // area pdf 1/A turned into solid angle
-  return LightSample(wi, dist, vec3(m.emission) / pdf, pdf);
-}
+// A point uniform on the area of the emissive triangle `index`, seen from p: defined in
+// triangle_light.glsl, or by labs/lab4.glsl in lab 4's build (cmake/Labs.cmake).
+LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick);
 
 // From inside (or on) a sphere light: a point uniform on its area, density 1 / (4 pi r^2);
 // light reaches the inside only from a double-sided emitter.

@@ -5,6 +5,9 @@
 #ifndef PT_RENDER_PIXEL_GLSL
 #define PT_RENDER_PIXEL_GLSL
 
+#include "common/kernel/rng.glsl"
+#include "common/kernel/camera.glsl"
+
 float luminance(vec3 c) {
   return dot(c, vec3(0.2126f, 0.7152f, 0.0722f));
 }
@@ -19,8 +22,7 @@ vec4 render_pixel(uint x, uint y) {
   float scale = 0.0f;  // the largest |luminance| so far
   float ssq = 1.0f;    // sum of (luminance / scale)^2
   uint pixel_index = y * params.image.x + x;
-  uint s = 0u;
-  for (; s < params.image.w; s++) {
+  for (uint s = 0u; s < params.image.w; s++) {
     rng_seed(pixel_index, params.image.z + s, params.options.x);
     float fx = (float(x) + rng_next_float()) / float(params.image.x);
     float fy = (float(y) + rng_next_float()) / float(params.image.y);
@@ -42,14 +44,6 @@ vec4 render_pixel(uint x, uint y) {
       ssq += r * r;
     }
   }
-  // lavapipe (Mesa's llvmpipe) silently ends every loop of an invocation once 65535 loop
-  // iterations have run in all of them together (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS):
-  // bounces x triangles tested x samples of the pass. Paths were cut short (the furnace of
-  // albedo 0.999 rendered 160-600 instead of 1000 on the GPU only). After that every loop
-  // runs once at most: a loop that must run image.w + 1 times tells, and the host reports it.
-  uint probe = 0u;
-  for (uint i = 0u; i <= params.image.w; i++) probe++;
-  if (s != params.image.w || probe != params.image.w + 1u) atomicAdd(counters[kCounterLoopLimit], 1u);
   return vec4(sum, scale * sqrt(ssq));
 }
 

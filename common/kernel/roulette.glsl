@@ -6,6 +6,8 @@
 #ifndef PT_ROULETTE_GLSL
 #define PT_ROULETTE_GLSL
 
+#include "common/kernel/rng.glsl"
+
 float max_component(vec3 v) {
   return max(v.x, max(v.y, v.z));
 }

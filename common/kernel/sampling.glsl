@@ -4,11 +4,9 @@
 #ifndef PT_SAMPLING_GLSL
 #define PT_SAMPLING_GLSL
 
-const float kPi = 3.14159265358979f;
+#include "common/kernel/rng.glsl"
 
-#include "labs/lab_hooks.glsl"
-#include "labs/lab2.glsl"
-#include "labs/lab3.glsl"
+const float kPi = 3.14159265358979f;
 
 // An orthonormal basis around a unit normal, without branches on the normal's direction
 // except its sign (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
@@ -33,38 +31,20 @@ vec3 frame_to_local(Frame f, vec3 v) {
   return vec3(dot(v, f.t), dot(v, f.b), dot(v, f.n));
 }
 
-// Uniform over the hemisphere z > 0: cos(theta) = u.x, phi = 2 pi u.y; pdf 1 / (2 pi).
-vec3 sample_uniform_hemisphere(vec2 u) {
-  PT_LAB_HOOK(2, lab2_sample_uniform_hemisphere(u));  // lab 2 (docs/labs/lab2.md)
-  float z = u.x;
-  float r = sqrt(max(0.0f, 1.0f - z * z));
-  float phi = 2.0f * kPi * u.y;
-  return vec3(r * cos(phi), r * sin(phi), z);
-}
-
-float uniform_hemisphere_pdf() {
-  PT_LAB_HOOK(2, lab2_uniform_hemisphere_pdf());
-  return 1.0f / (2.0f * kPi);
-}
+// The two hemisphere samplers and their pdfs, declared here and defined in
+// uniform_hemisphere.glsl and cosine_hemisphere.glsl, or by a lab's file in that lab's
+// build (labs/, cmake/Labs.cmake): the build picks the definitions.
+// Uniform over the hemisphere z > 0: density 1 / (2 pi) (stage2, Eq. 3).
+vec3 sample_uniform_hemisphere(vec2 u);
+float uniform_hemisphere_pdf();
+// Cosine-weighted over the hemisphere z > 0: density cos(theta) / pi (stage3, Eq. 4).
+vec3 sample_cosine_hemisphere(vec2 u);
+float cosine_hemisphere_pdf(float cos_theta);
 
 vec2 invert_uniform_hemisphere(vec3 w) {
   float phi = atan(w.y, w.x);
   if (phi < 0.0f) phi += 2.0f * kPi;
   return vec2(w.z, phi / (2.0f * kPi));
-}
-
-// Cosine-weighted over the hemisphere z > 0 (Malley's method: uniform on the disk, lifted
-// up): pdf cos(theta) / pi, the diffuse lobe's own shape (stage3, Eq. 4).
-vec3 sample_cosine_hemisphere(vec2 u) {
-  PT_LAB_HOOK(3, lab3_sample_cosine_hemisphere(u));  // lab 3 (docs/labs/lab3.md)
-  float r = sqrt(u.x);
-  float phi = 2.0f * kPi * u.y;
-  return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0f, 1.0f - u.x)));
-}
-
-float cosine_hemisphere_pdf(float cos_theta) {
-  PT_LAB_HOOK(3, lab3_cosine_hemisphere_pdf(cos_theta));
-  return max(cos_theta, 0.0f) * (1.0f / kPi);
 }
 
 vec2 invert_cosine_hemisphere(vec3 w) {

@@ -6,6 +6,8 @@
 #ifndef PT_SPAWN_GLSL
 #define PT_SPAWN_GLSL
 
+#include "common/kernel/camera.glsl"
+
 // The spacing of floats just above x >= 0: how finely a coordinate of that size is known.
 float ulp_above(float x) {
   return intBitsToFloat(floatBitsToInt(x) + 1) - x;

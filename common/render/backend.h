@@ -42,9 +42,6 @@ struct StageKernels {
                                          // copy alone is the general kernel
   std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
   bool uses_light_table = false;         // reads lights[] and point_lights[] (stage4)
-
-  // The CPU copy built for (at least) the scene features `features` (kFeature* bits).
-  const CpuKernel& cpu_for(uint features) const;
 };
 
 // What a pass reports besides its image.
@@ -66,7 +63,5 @@ class Backend {
   // render_pixel(): rgb sum, squared-luminance sum).
   virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
 };
-
-std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads = 0);
 
 }  // namespace pt

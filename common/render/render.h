@@ -16,6 +16,8 @@ namespace pt {
 
 struct Scene;
 
+// What a render computes and when it stops: the options of the contract that change the
+// image or end the render (common/app/options.h holds one).
 struct RenderSettings {
   int width = 512;
   int height = 512;
@@ -29,8 +31,12 @@ struct RenderSettings {
                                             // error of the image mean is below it
   bool all_features = false;                // the general kernel, not the one specialised
                                             // to the scene's features (--all-features)
-  bool progress = false;                    // progress line on stderr
-  const char* label = "render";             // names the progress line
+};
+
+// How a render is watched and resumed; none of it changes the image.
+struct RenderHooks {
+  bool progress = false;         // progress line on stderr (on a terminal)
+  const char* label = "render";  // names the progress line
   // Checkpoints (common/app/checkpoint.h): continue from this state instead of an empty film,
   // and hand the state to `save` every save_seconds, at an interrupt and at a device
   // failure (never after a pass cut short by --spp: the schedule must stay whole).
@@ -75,15 +81,7 @@ std::uint64_t pass_samples(std::uint64_t index);
 // The parameters every pass shares (the first sample index and count are set per pass).
 FrameParams make_frame_params(const Scene& scene, const RenderSettings& settings);
 
-RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& settings);
-
-// Bytes of host memory a render of this size needs (film + pass buffer; a resumed render
-// holds a second film, the checkpoint's, while it starts: resuming = true), with overflow
-// checks; throws pt::Error(2) naming the numbers if the machine does not have them. The
-// GPU backend checks its own device's limits.
-void check_image_memory(int width, int height, bool resuming = false);
-
-// The host memory available now (MemAvailable of /proc/meminfo, else all of it).
-std::uint64_t available_memory_bytes();
+RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& settings,
+                    const RenderHooks& hooks = {});
 
 }  // namespace pt

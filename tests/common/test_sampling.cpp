@@ -15,11 +15,11 @@
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
-using namespace pt::glsl;
-#include "common/kernel/bindings.glsl"
+#include "cpu/kernel_begin.h"
 #include "common/kernel/rng.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
+#include "cpu/kernel_support.h"
 }  // namespace kernel
 }  // namespace
 

@@ -13,10 +13,10 @@
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
-using namespace pt::glsl;
-#include "common/kernel/bindings.glsl"
+#include "cpu/kernel_begin.h"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "cpu/kernel_support.h"
 }  // namespace kernel
 }  // namespace
 

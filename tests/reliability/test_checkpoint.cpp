@@ -19,6 +19,8 @@
 #include "common/scene/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
+#include "common/render/memory.h"
+#include "cpu/cpu_backend.h"
 #include "tests/support/test_render.h"
 
 namespace fs = std::filesystem;
@@ -63,10 +65,10 @@ TEST_CASE("checkpoint: a render resumed from any pass equals the uninterrupted o
 
   // The same render, saving its state after every pass.
   std::vector<RenderResult> states;
-  RenderSettings saving = s;
+  RenderHooks saving;
   saving.save_seconds = 0.0;
   saving.save = [&](const RenderResult& r) { states.push_back(r); };
-  RenderResult again = test::render_on("cpu", stage4::kernels(), scene, saving);
+  RenderResult again = test::render_on("cpu", stage4::kernels(), scene, s, saving);
   CHECK(again.film.sums() == whole.film.sums());
   REQUIRE(states.size() == 5);  // after 1, 3, 7, 15, 31 spp; never after the last (cut) pass
 
@@ -78,9 +80,9 @@ TEST_CASE("checkpoint: a render resumed from any pass equals the uninterrupted o
     RenderResult loaded = load_checkpoint(file.string(), key, "stage4_direct_indirect", 20, 20);
     CHECK(loaded.film.spp() == state.film.spp());
     CHECK(loaded.passes == state.passes);
-    RenderSettings resuming = s;
+    RenderHooks resuming;
     resuming.resume = &loaded;
-    RenderResult resumed = test::render_on("cpu", stage4::kernels(), scene, resuming);
+    RenderResult resumed = test::render_on("cpu", stage4::kernels(), scene, s, resuming);
     CHECK(resumed.film.spp() == 40);
     CHECK(resumed.film.sums() == whole.film.sums());  // exact equality of every double
     CHECK(resumed.counters.zero_pdf == whole.counters.zero_pdf);
@@ -123,8 +125,9 @@ TEST_CASE("checkpoint: one of another render, a damaged or a truncated file is r
   Scene scene = make_builtin_scene("cornell");
   RenderSettings s = test::settings(8, 6, 7, 5);
   std::vector<RenderResult> states;
-  s.save = [&](const RenderResult& r) { states.push_back(r); };
-  test::render_on("cpu", stage1::kernels(), scene, s);
+  RenderHooks saving;
+  saving.save = [&](const RenderResult& r) { states.push_back(r); };
+  test::render_on("cpu", stage1::kernels(), scene, s, saving);
   REQUIRE(!states.empty());
   const std::uint64_t key = render_key("stage1_raycast", scene, s);
   fs::path good = scratch_file("good.ckpt"), bad = scratch_file("bad.ckpt");

@@ -50,12 +50,20 @@ namespace {  // internal linkage: each test file compiles its own copy of the ke
 namespace d3 {
 PT_DOUBLE_PRELUDE
 #define float double
+#include "cpu/kernel_bindings.h"
 #include "stage3_importance/integrator.glsl"
+#include "cpu/kernel_support.h"
+#include "common/kernel/render_pixel.glsl"
 #undef float
 }  // namespace d3
 
 // The shared shader files again, for the second namespace.
-#undef PT_BINDINGS_GLSL
+#undef PT_CPU_KERNEL_BINDINGS_H
+#undef PT_CPU_TRIANGLE_LANES_H
+#undef PT_KERNEL_DEFINITIONS_GLSL
+#undef PT_UNIFORM_HEMISPHERE_GLSL
+#undef PT_COSINE_HEMISPHERE_GLSL
+#undef PT_TRIANGLE_LIGHT_GLSL
 #undef PT_BSDF_GLSL
 #undef PT_CAMERA_GLSL
 #undef PT_FEATURES_GLSL
@@ -70,7 +78,10 @@ PT_DOUBLE_PRELUDE
 namespace d4 {
 PT_DOUBLE_PRELUDE
 #define float double
+#include "cpu/kernel_bindings.h"
 #include "stage4_direct_indirect/integrator.glsl"
+#include "cpu/kernel_support.h"
+#include "common/kernel/render_pixel.glsl"
 #undef float
 }  // namespace d4
 

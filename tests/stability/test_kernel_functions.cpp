@@ -23,14 +23,14 @@
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
-using namespace pt::glsl;
-#include "common/kernel/bindings.glsl"
+#include "cpu/kernel_begin.h"
 #include "common/kernel/rng.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
 #include "common/kernel/spawn.glsl"
+#include "cpu/kernel_support.h"
 }  // namespace kernel
 using namespace pt;
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "cpu/cpu_backend.h"
 #include "common/scene/analytic_scenes.h"
 #include "cpu/kernel_prelude.h"
 #include "stage2_montecarlo/kernels.h"
@@ -14,11 +15,9 @@
 
 // stage2's integrator built as the article prints Eq. (3): the factor 1/(2 pi N).
 namespace printed {
-using namespace pt::glsl;
-#define PT_EQ3_FACTOR (1.0f / (2.0f * kPi))
-#include "stage2_montecarlo/integrator.glsl"
-#include "cpu/kernel_entry.h"
-#undef PT_EQ3_FACTOR
+#include "cpu/kernel_begin.h"
+#include "printed/stage2_eq3.glsl"  // the integrator as the article prints it (tests/CMakeLists.txt)
+#include "cpu/kernel_end.h"
 }  // namespace printed
 
 using namespace pt;

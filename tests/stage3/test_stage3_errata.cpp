@@ -1,9 +1,10 @@
 // Erratum 2: Eq. (4) as printed is Eq. (3) again, with no pdf. Built from stage3's own
-// integrator (PT_EQ4_PRINTED), it fails the furnace test, which f cos / pdf passes.
+// integrator (printed/stage3_eq4.glsl, written by tests/CMakeLists.txt), it fails the furnace test, which f cos / pdf passes.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
+#include "cpu/cpu_backend.h"
 #include "common/scene/analytic_scenes.h"
 #include "cpu/kernel_prelude.h"
 #include "stage3_importance/kernels.h"
@@ -12,11 +13,9 @@
 
 namespace {  // internal linkage: each namespace below compiles its own copy
 namespace eq4_printed {
-using namespace pt::glsl;
-#define PT_EQ4_PRINTED
-#include "stage3_importance/integrator.glsl"
-#include "cpu/kernel_entry.h"
-#undef PT_EQ4_PRINTED
+#include "cpu/kernel_begin.h"
+#include "printed/stage3_eq4.glsl"  // the integrator as the article prints it (tests/CMakeLists.txt)
+#include "cpu/kernel_end.h"
 }  // namespace eq4_printed
 }  // namespace
 

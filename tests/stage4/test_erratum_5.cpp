@@ -3,6 +3,7 @@
 // a square light, which the corrected estimator passes (test_stage4_images.cpp).
 #include <catch2/catch.hpp>
 
+#include "cpu/cpu_backend.h"
 #include "common/scene/analytic_scenes.h"
 #include "cpu/kernel_prelude.h"
 #include "stage4_direct_indirect/kernels.h"
@@ -12,11 +13,9 @@
 
 namespace {
 namespace eq5_printed {
-using namespace pt::glsl;
-#define PT_EQ5_PRINTED
-#include "stage4_direct_indirect/integrator.glsl"
-#include "cpu/kernel_entry.h"
-#undef PT_EQ5_PRINTED
+#include "cpu/kernel_begin.h"
+#include "printed/stage4_eq5.glsl"  // the integrator as the article prints it (tests/CMakeLists.txt)
+#include "cpu/kernel_end.h"
 }  // namespace eq5_printed
 }  // namespace
 

@@ -11,8 +11,7 @@
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
-using namespace pt::glsl;
-#include "common/kernel/bindings.glsl"
+#include "cpu/kernel_begin.h"
 #include "common/kernel/rng.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
@@ -20,6 +19,7 @@ using namespace pt::glsl;
 #include "common/kernel/bsdf.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/lights.glsl"
+#include "cpu/kernel_support.h"
 }  // namespace kernel
 }  // namespace
 

@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 
+#include "cpu/cpu_backend.h"
 #include "gpu/gpu_backend.h"
 
 namespace pt::test {
@@ -29,9 +30,9 @@ RenderSettings settings(int width, int height, std::uint64_t spp, std::uint32_t 
 }
 
 RenderResult render_on(const std::string& backend, const StageKernels& kernels, const Scene& scene,
-                       const RenderSettings& settings) {
+                       const RenderSettings& settings, const RenderHooks& hooks) {
   std::unique_ptr<Backend> b = make_backend(backend, kernels);
-  return render(*b, scene, settings);
+  return render(*b, scene, settings, hooks);
 }
 
 RenderResult render_on_test_backend(const StageKernels& kernels, const Scene& scene, const RenderSettings& settings) {

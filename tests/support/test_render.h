@@ -25,7 +25,7 @@ RenderSettings settings(int width, int height, std::uint64_t spp, std::uint32_t 
 
 // Renders a scene on the backend under test (or the one named).
 RenderResult render_on(const std::string& backend, const StageKernels& kernels, const Scene& scene,
-                       const RenderSettings& settings);
+                       const RenderSettings& settings, const RenderHooks& hooks = {});
 RenderResult render_on_test_backend(const StageKernels& kernels, const Scene& scene, const RenderSettings& settings);
 
 }  // namespace pt::test

@@ -1,0 +1,52 @@
+// The summary line and the image's metadata of a finished render (app.h).
+#include <cstdio>
+
+#include "common/app/app.h"
+#include "common/render/film.h"
+
+namespace pt {
+
+ImageMetadata image_metadata(const char* stage, const Options& o, const Backend& backend,
+                             const RenderResult& r) {
+  ImageMetadata m;
+  m.stage = stage;
+  m.backend = backend.kind() + " (" + backend.device_name() + ")";
+  m.scene = o.scene;
+  m.spp = r.film.spp();
+  m.seed = o.render.seed;
+  m.seconds = r.seconds;
+  return m;
+}
+
+std::string summary_line(const char* stage, const Backend& backend, const RenderResult& r,
+                         const std::string& tags) {
+  const Film& f = r.film;
+  double samples = double(f.width()) * double(f.height()) * double(f.spp());
+  char line[512];
+  std::snprintf(line, sizeof line, "%s: backend %s (%s), %dx%d, %llu spp, %.3f s, %.3g samples/s", stage,
+                backend.kind().c_str(), backend.device_name().c_str(), f.width(), f.height(),
+                (unsigned long long)f.spp(), r.seconds, r.seconds > 0.0 ? samples / r.seconds : 0.0);
+  std::string s = line;
+  if (f.spp() >= 2) {
+    std::snprintf(line, sizeof line, ", estimated relative error %.2g", f.relative_standard_error());
+    s += line;
+  }
+  // Events that are rare and deserve a word: each is said once, with its count.
+  const RenderCounters& c = r.counters;
+  if (c.non_finite) {
+    std::uint32_t p = c.first_non_finite_pixel;
+    s += ", " + std::to_string(c.non_finite) + " NaN/Inf samples dropped (first at pixel " +
+         std::to_string(p % std::uint32_t(f.width())) + "," + std::to_string(p / std::uint32_t(f.width())) + ")";
+  }
+  if (c.zero_pdf) s += ", " + std::to_string(c.zero_pdf) + " paths ended by a zero pdf";
+  if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
+  if (c.loop_limit) {
+    s += ", WRONG IMAGE: the Vulkan driver cut the loops of " + std::to_string(c.loop_limit) +
+         " pixel passes short (lavapipe stops a kernel after 65535 loop iterations; fewer triangles, "
+         "a lower albedo or --backend cpu)";
+  }
+  if (!tags.empty()) s += " " + tags;
+  return s;
+}
+
+}  // namespace pt

@@ -1,0 +1,33 @@
+// Light sampling of one emissive triangle for stage4 (the article's Eq. 5, corrected by
+// erratum 5), declared in lights.glsl. Lab 4 (docs/labs/lab4.md) asks the student for this
+// function: its build compiles labs/lab4.glsl instead of this file.
+#ifndef PT_TRIANGLE_LIGHT_GLSL
+#define PT_TRIANGLE_LIGHT_GLSL
+
+#include "common/kernel/lights.glsl"
+
+// A point uniform on the triangle: density 1 / area (Turk's square-root mapping).
+LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
+  Triangle tri = triangles[index];
+  vec3 p0 = vec3(tri.p0);
+  vec3 p1 = vec3(tri.p1);
+  vec3 p2 = vec3(tri.p2);
+  float su = sqrt(u.x);
+  vec3 y = (1.0f - su) * p0 + su * (1.0f - u.y) * p1 + su * u.y * p2;
+  vec3 c = cross(p1 - p0, p2 - p0);
+  float area = 0.5f * length(c);
+  vec3 n = normalize(c);
+  vec3 d = y - p;
+  float dist2 = dot(d, d);
+  float dist = sqrt(dist2);
+  vec3 wi = d / dist;
+  Material m = materials[tri.info.x];
+  float cos_y = dot(-wi, n);
+  // Le from the front face only, unless double-sided (the contract (README.md)).
+  if (m.emission.w > 0.0f) cos_y = abs(cos_y);
+  if (!(cos_y > 0.0f) || !(dist > 0.0f)) return no_light();
+  float pdf = dist2 / (cos_y * area) * pick;  // area pdf 1/A turned into solid angle
+  return LightSample(wi, dist, vec3(m.emission) / pdf, pdf);
+}
+
+#endif  // PT_TRIANGLE_LIGHT_GLSL

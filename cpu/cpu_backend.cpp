@@ -1,0 +1,82 @@
+// The CPU backend (the "cpu/": tiles on all cores, SIMD lanes, runtime dispatch):
+// a stage's kernel compiled as C++ (cmake/PtStage.cmake) run over rows of the image on all
+// cores, in the copy specialised to the scene's features (cpu_variants.h).
+#include "cpu/cpu_backend.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include "common/render/render.h"
+#include "common/scene/scene.h"
+#include "cpu/cpu_variants.h"
+#include "cpu/triangle_soa.h"
+
+namespace pt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The copy of the kernel built for (at least) the scene features `features` (kFeature* bits).
+const CpuKernel& cpu_kernel_for(const StageKernels& kernels, uint features) {
+  return kernels.cpu[cpu_variant_index(features, unsigned(kernels.cpu.size()))];
+}
+
+// The CPU backend: the stage's kernel compiled as C++, rows handed out to all cores.
+class CpuBackend : public Backend {
+ public:
+  CpuBackend(const StageKernels& kernels, unsigned threads)
+      : kernels_(kernels), threads_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
+
+  std::string kind() const override { return "cpu"; }
+  std::string device_name() const override { return std::to_string(threads_) + " threads"; }
+
+  void set_scene(const Scene& scene, uint features) override {
+    kernel_ = cpu_kernel_for(kernels_, features);
+    soa_ = std::make_unique<TriangleSoa>(scene.triangles);
+    scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
+                         scene.point_lights.data(), nullptr, scene.lights.data(),
+                         soa_->data.data(), soa_->stride};
+  }
+
+  PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
+    Clock::time_point start = Clock::now();
+    PassResult result;
+    result.counters[kCounterNonFinitePixel] = kNoPixel;
+    KernelScene scene = scene_;
+    scene.counters = result.counters;
+    kernel_.bind(scene, params);
+    // Rows are taken a few at a time from a shared counter: cheap load balancing.
+    const uint height = params.image.y, rows_per_task = 4;
+    std::atomic<uint> next_row{0};
+    auto work = [&] {
+      for (uint y0; (y0 = next_row.fetch_add(rows_per_task)) < height;) {
+        kernel_.render_rows(y0, std::min(height, y0 + rows_per_task), out.data());
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned i = 1; i < threads_; i++) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    result.kernel_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+  }
+
+ private:
+  StageKernels kernels_;
+  CpuKernel kernel_{};
+  unsigned threads_;
+  KernelScene scene_{};
+  std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads) {
+  return std::make_unique<CpuBackend>(kernels, threads);
+}
+
+}  // namespace pt

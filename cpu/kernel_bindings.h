@@ -1,0 +1,33 @@
+// The CPU side of the kernel's view of the scene: the flat arrays of
+// common/kernel/scene_types.h and the per-pass parameters as plain globals (set by
+// kernel_entry.h before each pass), and the kernel's feature set as a compile-time constant.
+// gpu/kernel_bindings.glsl declares the same names as Vulkan buffers. Included inside a
+// kernel's namespace (kernel_begin.h).
+#ifndef PT_CPU_KERNEL_BINDINGS_H
+#define PT_CPU_KERNEL_BINDINGS_H
+
+inline const Triangle* triangles = nullptr;
+inline const Sphere* spheres = nullptr;
+inline const Material* materials = nullptr;
+inline const PointLight* point_lights = nullptr;
+inline FrameParams params;
+inline uint* counters = nullptr;       // kCounterCount event counters, updated atomically
+inline const Light* lights = nullptr;  // the light table (stage4)
+inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
+// The triangles again as a structure of arrays for the SIMD search (triangle_lanes.h,
+// triangle_soa.h): nullptr means the plain loop over triangles[].
+inline const float* triangle_soa = nullptr;
+inline uint triangle_soa_stride = 0u;  // floats per array (the padded triangle count)
+inline Triangle triangle_at(uint i) { return triangles[i]; }
+
+// The features this copy of the kernel is compiled for (cpu_variants.h): one copy per
+// variant, so the code of a feature the scene lacks is not in the copy that renders it.
+#ifdef PT_CPU_FEATURES
+const uint kSceneFeatures = PT_CPU_FEATURES;
+#else
+const uint kSceneFeatures = kFeatureAll;
+#endif
+
+#include "common/kernel/features.glsl"
+
+#endif  // PT_CPU_KERNEL_BINDINGS_H

@@ -1,0 +1,38 @@
+// The GPU side of the kernel's view of the scene: the flat arrays of
+// common/kernel/scene_types.h as storage buffers, the per-pass parameters as a uniform
+// block, and the kernel's feature set as a specialization constant (set when the pipeline
+// is made for a scene, so the driver removes the code of every feature the scene lacks).
+// cpu/kernel_bindings.h declares the same names for the CPU. compute_pipeline.cpp makes
+// the matching descriptor set layout.
+#ifndef PT_GPU_KERNEL_BINDINGS_GLSL
+#define PT_GPU_KERNEL_BINDINGS_GLSL
+
+layout(std430, set = 0, binding = 0) readonly buffer TriangleBuffer { Triangle triangles[]; };
+layout(std430, set = 0, binding = 1) readonly buffer SphereBuffer { Sphere spheres[]; };
+layout(std430, set = 0, binding = 2) readonly buffer MaterialBuffer { Material materials[]; };
+layout(std430, set = 0, binding = 3) readonly buffer PointLightBuffer { PointLight point_lights[]; };
+layout(std140, set = 0, binding = 4) uniform ParamsBuffer { FrameParams params; };
+layout(std430, set = 0, binding = 5) writeonly buffer OutputBuffer { vec4 pass_output[]; };
+layout(std430, set = 0, binding = 6) buffer CounterBuffer { uint counters[]; };
+layout(std430, set = 0, binding = 7) readonly buffer LightBuffer { Light lights[]; };
+uint rng_state;  // the random-number state of one invocation
+
+// The triangles again in a uniform buffer when the scene's fit in one (gpu_backend.cpp):
+// lavapipe (Mesa's llvmpipe) reads a storage buffer lane by lane, a branch and a bounds
+// test for every invocation and component, even at an index all invocations share, as the
+// loop over the triangles has; from a uniform buffer such a read is one load for all.
+// kUniformTriangles: how many the uniform copy can hold, 0 when it is not used (a
+// specialization constant: the driver keeps only one of the two reads).
+layout(constant_id = 1) const uint kUniformTriangles = 0u;
+layout(std140, set = 0, binding = 8) uniform UniformTriangleBuffer { Triangle uniform_triangles[kUniformTriangles + 1u]; };
+Triangle triangle_at(uint i) {
+  if (kUniformTriangles > 0u) return uniform_triangles[i];
+  return triangles[i];
+}
+
+// The scene's features (scene_types.h: kFeature*); every bit set is the general kernel.
+layout(constant_id = 0) const uint kSceneFeatures = kFeatureAll;
+
+#include "common/kernel/features.glsl"
+
+#endif  // PT_GPU_KERNEL_BINDINGS_GLSL

@@ -1,0 +1,36 @@
+// The lab check build's definitions of the functions labs 2-4 ask for (cmake/Labs.cmake,
+// PT_LAB_CHECK): each calls the student's version from labs/labN.glsl when PT_LAB_STUB=N
+// selects lab N at run time, else the reference, so one build shows every lab's tests
+// failing with its stubs (tools/expect_lab_failure.sh). C++ only; included inside a kernel's
+// namespace like the definitions it replaces.
+#include "common/kernel/lights.glsl"  // what both versions use, outside the namespaces below
+
+namespace reference {
+#include "common/kernel/uniform_hemisphere.glsl"
+#include "common/kernel/cosine_hemisphere.glsl"
+#include "common/kernel/triangle_light.glsl"
+}  // namespace reference
+
+namespace student {
+#include "labs/lab2.glsl"
+#include "labs/lab3.glsl"
+#include "labs/lab4.glsl"
+}  // namespace student
+
+vec3 sample_uniform_hemisphere(vec2 u) {
+  return pt::lab::selected() == 2 ? student::sample_uniform_hemisphere(u) : reference::sample_uniform_hemisphere(u);
+}
+float uniform_hemisphere_pdf() {
+  return pt::lab::selected() == 2 ? student::uniform_hemisphere_pdf() : reference::uniform_hemisphere_pdf();
+}
+vec3 sample_cosine_hemisphere(vec2 u) {
+  return pt::lab::selected() == 3 ? student::sample_cosine_hemisphere(u) : reference::sample_cosine_hemisphere(u);
+}
+float cosine_hemisphere_pdf(float cos_theta) {
+  return pt::lab::selected() == 3 ? student::cosine_hemisphere_pdf(cos_theta)
+                                  : reference::cosine_hemisphere_pdf(cos_theta);
+}
+LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
+  return pt::lab::selected() == 4 ? student::sample_triangle_light(index, p, u, pick)
+                                  : reference::sample_triangle_light(index, p, u, pick);
+}
