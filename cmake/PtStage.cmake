@@ -40,6 +40,7 @@ function(pt_add_stage DIR)
 #include \"gpu/kernel_main.glsl\"
 ")
   pt_embed_shader(${DIR} ${out}/kernel.comp)
+  add_custom_target(${DIR}_spirv DEPENDS ${${DIR}_SPIRV_HEADER})  # the GPU kernel alone
 
   math(EXPR count "1 << ${ARG_CPU_GROUPS}")
   math(EXPR last "${count} - 1")

@@ -1,7 +1,8 @@
 // The lab check build's stage1 integrator (cmake/Labs.cmake, PT_LAB_CHECK): Li is the
 // student's from labs/lab1.glsl when PT_LAB_STUB=1 selects lab 1 at run time, else stage1's
 // own. C++ only; included inside the kernel's namespace in place of the integrator.
-#include "common/kernel/intersect.glsl"  // what both versions use, outside the namespaces below
+#include "common/kernel/rng.glsl"  // what both versions use, outside the namespaces below
+#include "common/kernel/intersect.glsl"
 
 namespace reference {
 #include "stage1_raycast/integrator.glsl"

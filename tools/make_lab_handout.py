@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Makes the students' copy of lab N (docs/labs/README.md; the labs follow the article's
 Eq. 2 to 5): the repository without .git and build folders, in which the reference code of
-lab N's functions (the bodies below each PT_LAB_HOOK(N, ...)) and the chapters' excerpts
-of them are removed, so the answer is not handed out with the question.
+the functions lab N asks for (the files its build replaces by labs/labN.glsl, see
+cmake/Labs.cmake) is removed from their bodies, and the chapters' excerpts of them too, so
+the answer is not handed out with the question.
 usage: tools/make_lab_handout.py N DEST     (DEST must not exist yet)"""
 import os
 import re
@@ -14,45 +15,44 @@ sys.path.insert(0, HERE)
 import docs_check  # noqa: E402
 
 # What a function of each return type returns in the handout in place of its body; lab N's
-# build never runs it (the hook returns the student's version first).
+# build never compiles it (it compiles labs/labN.glsl instead).
 DEFAULTS = {"vec3": "vec3(0.0f)", "float": "0.0f", "LightSample": "no_light()"}
-SOURCE_DIRS = ("common", "stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect")
+# The files whose functions each lab asks for: what its build replaces by labs/labN.glsl
+# (cmake/Labs.cmake; lab 1: stage1's integrator, pt_add_stage's LAB option).
+REFERENCE_FILES = {
+    1: ["stage1_raycast/integrator.glsl"],
+    2: ["common/kernel/uniform_hemisphere.glsl"],
+    3: ["common/kernel/cosine_hemisphere.glsl"],
+    4: ["common/kernel/triangle_light.glsl"],
+}
+DEFINITION = re.compile(r"^(\w+)\s+(\w+)\s*\(.*\{\s*$")
 
 
 def strip_sources(dest, lab):
-    """Replaces the body below each hook of `lab`; returns the (path, name) of each function."""
-    hook = re.compile(r"^\s*PT_LAB_HOOK\(" + str(lab) + r",")
+    """Replaces the body of every function of lab N's reference files; returns their (path, name)."""
     names = []
-    for top in SOURCE_DIRS:
-        for base, _, files in os.walk(os.path.join(dest, top)):
-            for f in sorted(files):
-                if not f.endswith((".glsl", ".h", ".cpp", ".comp")):
-                    continue
-                path = os.path.join(base, f)
-                lines = docs_check.read_lines(path)
-                if not any(hook.match(l) for l in lines):
-                    continue
-                out = []
-                i = 0
-                while i < len(lines):
-                    out.append(lines[i])
-                    if not hook.match(lines[i]):
-                        i += 1
-                        continue
-                    definition = i - 1
-                    m = re.match(r"^(\w+)\s+(\w+)\s*\(", lines[definition])
-                    end = docs_check.block_end(lines, definition)
-                    if not m or end is None or m.group(1) not in DEFAULTS:
-                        raise SystemExit(f"make_lab_handout: cannot read the function around "
-                                         f"{os.path.relpath(path, dest)}:{i + 1}; is the hook its first line?")
-                    names.append((os.path.relpath(path, dest), m.group(2)))
-                    out.append(f"  // The reference code is not in the lab {lab} handout: write "
-                               f"lab{lab}_... in labs/lab{lab}.glsl (docs/labs/lab{lab}.md).")
-                    out.append(f"  return {DEFAULTS[m.group(1)]};")
-                    out.append(lines[end])
-                    i = end + 1
-                with open(path, "w", encoding="utf-8") as fh:
-                    fh.write("\n".join(out))
+    for rel in REFERENCE_FILES[lab]:
+        path = os.path.join(dest, rel)
+        lines = docs_check.read_lines(path)
+        out = []
+        i = 0
+        while i < len(lines):
+            out.append(lines[i])
+            m = DEFINITION.match(lines[i])
+            end = docs_check.block_end(lines, i) if m else None
+            if not m or end is None:
+                i += 1
+                continue
+            if m.group(1) not in DEFAULTS:
+                raise SystemExit(f"make_lab_handout: {rel}:{i + 1}: no default for a function returning {m.group(1)}")
+            names.append((rel, m.group(2)))
+            out.append(f"  // The reference code is not in the lab {lab} handout: write {m.group(2)} in "
+                       f"labs/lab{lab}.glsl (docs/labs/lab{lab}.md).")
+            out.append(f"  return {DEFAULTS[m.group(1)]};")
+            out.append(lines[end])
+            i = end + 1
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write("\n".join(out))
     return names
 
 
@@ -93,7 +93,7 @@ def main():
     names = strip_sources(dest, lab)
     if not names:
         shutil.rmtree(dest)
-        print(f"make_lab_handout: no PT_LAB_HOOK({lab}, ...) found in the sources", file=sys.stderr)
+        print(f"make_lab_handout: no function found in {', '.join(REFERENCE_FILES[lab])}", file=sys.stderr)
         return 1
     strip_docs(dest, lab, names)
     # The shorter bodies move the lines below them: renumber the docs' line references.
