@@ -7,7 +7,7 @@
 // keeps the nearest hit among its own triangles; the nearest of the lanes, the lower index
 // on a tie, is then what the loop over hit_triangle() finds, since that loop also keeps the
 // nearest hit whatever the order. Same t, barycentrics and triangle, bit for bit
-// (tests/common/test_intersect_soa.cpp). Why this layout: docs/results.md, "Speed targets".
+// (tests/cpu/test_triangle_lanes.cpp). Why this layout: docs/results.md, "Speed targets".
 // Included after common/kernel/intersect.glsl (kernel_end.h), whose nearest_triangle() it defines.
 #ifndef PT_CPU_TRIANGLE_LANES_H
 #define PT_CPU_TRIANGLE_LANES_H

@@ -1,4 +1,4 @@
-// Test support for the command-line tests (tests/cli, tests/reliability): running a stage
+// Test support for the command-line tests (tests/stages/test_cli*.cpp, tests/common/app): running a stage
 // program as a user would (CONTRACT: options in, one summary line out, one error line and
 // an exit code on bad input) and checking the shape of its errors.
 #pragma once
