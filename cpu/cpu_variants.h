@@ -49,7 +49,7 @@ static_assert(cpu_variant_index(kFeatureAll, 16) == 15);
 
 }  // namespace pt
 
-// Inside a stage's cpu_kernel.cpp compiled as variant PT_CPU_VARIANT (cmake/PtStage.cmake):
+// Inside a stage's CPU kernel compiled as variant PT_CPU_VARIANT (cmake/PtStage.cmake):
 // the kernel's features (features.glsl) and the namespace of this copy.
 #ifdef PT_CPU_VARIANT
 #define PT_CPU_FEATURES (pt::cpu_variant_features(PT_CPU_VARIANT, PT_CPU_VARIANT_COUNT))

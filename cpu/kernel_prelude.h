@@ -13,7 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>       // and <type_traits>: intersect_cpu.h, #included inside a namespace
+#include <limits>       // and <type_traits>: triangle_lanes.h, #included inside a namespace
 #include <type_traits>
 
 #include <glm/glm.hpp>

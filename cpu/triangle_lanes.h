@@ -25,7 +25,7 @@ template <int bytes> struct Lanes {
   }
 };
 
-// abs(), max() and min() as the scalar code computes them (cpp_prelude.h's abs, glm's max
+// abs(), max() and min() as the scalar code computes them (kernel_prelude.h's abs, glm's max
 // and min), on every lane.
 template <class F> [[gnu::always_inline]] inline F lanes_abs(F x) {
   using L = Lanes<int(sizeof(F))>;

@@ -26,7 +26,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const u
                                  uint32_t uniform_triangles)
     : device_(context.device()) {
   try {
-    // The layout of bindings.glsl: what kind of buffer sits at each binding.
+    // The layout of gpu/kernel_bindings.glsl: what kind of buffer sits at each binding.
     VkDescriptorSetLayoutBinding bindings[kBindingCount];
     for (uint32_t i = 0; i < kBindingCount; i++) {
       bindings[i] = VkDescriptorSetLayoutBinding{i, binding_type(i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};

@@ -1,5 +1,5 @@
 // A compute pipeline made from embedded SPIR-V, with the one descriptor set that
-// common/kernel/bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
+// gpu/kernel_bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
 // per-pass parameters (uniform), 5 the pass output, 6 the event counters, 7 the light
 // table (storage), 8 the triangles again as a uniform buffer (used when they fit).
 #pragma once
@@ -32,7 +32,7 @@ class ComputePipeline {
  public:
   // `features`: the value of the kernel's specialization constant 0, kSceneFeatures
   // (common/kernel/features.glsl); `uniform_triangles`: constant 1, kUniformTriangles
-  // (common/kernel/bindings.glsl), how many triangles binding 8 holds, 0: read binding 0.
+  // (gpu/kernel_bindings.glsl), how many triangles binding 8 holds, 0: read binding 0.
   ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
                   uint32_t uniform_triangles = 0);
   ~ComputePipeline();

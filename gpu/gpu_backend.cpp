@@ -1,5 +1,5 @@
 // The Vulkan compute backend (see gpu_backend.h): the scene arrays in storage buffers (and
-// the triangles in a uniform buffer too when they fit: bindings.glsl, triangle_at),
+// the triangles in a uniform buffer too when they fit: gpu/kernel_bindings.glsl, triangle_at),
 // one pass = a few dispatches of 8x8 workgroups over row ranges, each short enough for a
 // desktop GPU's watchdog, timed with timestamp queries, then the output read back.
 #include "gpu/gpu_backend.h"
@@ -70,7 +70,7 @@ class GpuBackend : public Backend {
     // Only what the kernel specialised to `features` reads is uploaded.
     bool spheres = (features & kFeatureSpheres) != 0u, lights = kernels_.uses_light_table;
     upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
-    // The triangles again as a uniform buffer if they fit (bindings.glsl: triangle_at).
+    // The triangles again as a uniform buffer if they fit (gpu/kernel_bindings.glsl: triangle_at).
     UniformTriangles uniform = uniform_triangles(context_, scene.triangles);
     uniform_triangles_ = std::move(uniform.buffer);
     upload(spheres_, scene.spheres.data(), spheres ? scene.spheres.size() * sizeof(Sphere) : 0);
@@ -93,7 +93,7 @@ class GpuBackend : public Backend {
     if (!one_sample_ || params.image.w <= 1) {
       PassResult result = run_dispatches(params, out);
       if (result.counters[kCounterLoopLimit] == 0 || params.image.w <= 1) return result;
-      // lavapipe's loop budget per invocation ran out (render_pixel.glsl): the pass is wrong.
+      // lavapipe's loop budget per invocation ran out (gpu/kernel_main.glsl): the pass is wrong.
       // From now on every invocation renders one sample, the pass again included.
       one_sample_ = true;
     }

@@ -1,4 +1,4 @@
-// The C++ side of the lab hooks (docs/labs/README.md; labs/lab_hooks.glsl): which lab's
+// The C++ side of the lab hooks (docs/labs/README.md; labs/lab_support.glsl): which lab's
 // stub replaces the real function, and the loud failure of a stub the student has not yet
 // written. The labs follow the article's four algorithms (Eq. 2, 3, 4 and 5).
 //   PT_LAB=N (CMake -DPT_LAB=N, the student's build): lab N's stub, fixed at compile time.

@@ -16,7 +16,7 @@ enum ExitCode : int {
   kExitOutput = 5,
 };
 
-// Thrown anywhere below main(); guarded_main() prints what() and returns code.
+// Thrown anywhere below main(); pt::run_guarded() (common/app/app.h) prints what() and returns code.
 class Error : public std::runtime_error {
  public:
   Error(int code, const std::string& message) : std::runtime_error(message), code_(code) {}

@@ -83,7 +83,7 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
   float t = t_scaled * inv_det;
   // Only a nearer hit replaces best: of two at the same distance, the lower index stays.
   // The result is the nearest hit whatever order the triangles are tested in, which lets
-  // the CPU test them in parallel (intersect_cpu.h).
+  // the CPU test them in parallel (cpu/triangle_lanes.h).
   if (!(t > 0.0f && t < best.t)) return best;
   // A t no larger than its own rounding error cannot be told from 0: its sign may be
   // wrong (a sliver far from the ray origin), and the ray would re-hit the surface it

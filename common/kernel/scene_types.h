@@ -61,7 +61,7 @@ const uint kFeaturePointLights = 1u << 9u;
 const uint kFeatureSky = 1u << 10u;
 const uint kFeatureAll = (1u << 11u) - 1u;
 
-// Event counters the kernels keep (bindings.glsl: counters[]), reported by the summary.
+// Event counters the kernels keep (counters[] of cpu/kernel_bindings.h and gpu/kernel_bindings.glsl), reported by the summary.
 const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a safety net)
 const uint kCounterZeroPdf = 1u;        // paths ended by a zero pdf or a non-finite weight
 const uint kCounterNonFinite = 2u;      // samples dropped because they were NaN or Inf

@@ -16,7 +16,7 @@ namespace pt {
 
 struct Scene;
 
-// The scene arrays as the CPU kernel sees them (the GLSL buffers of bindings.glsl).
+// The scene arrays as the CPU kernel sees them (cpu/kernel_bindings.h; the GLSL buffers of gpu/kernel_bindings.glsl).
 struct KernelScene {
   const Triangle* triangles;
   const Sphere* spheres;

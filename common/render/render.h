@@ -54,7 +54,7 @@ struct RenderCounters {
   std::uint64_t zero_pdf = 0;    // paths ended by a zero pdf or a non-finite weight
   std::uint64_t non_finite = 0;  // NaN or infinite samples dropped
   std::uint32_t first_non_finite_pixel = kNoPixel;
-  std::uint64_t loop_limit = 0;  // pixel passes the Vulkan driver cut short (render_pixel.glsl)
+  std::uint64_t loop_limit = 0;  // pixel passes the Vulkan driver cut short (gpu/kernel_main.glsl)
   void add(const PassResult& pass);
 };
 

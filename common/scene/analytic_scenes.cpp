@@ -1,5 +1,5 @@
 // The built-in analytic scenes (analytic_scenes.h): scenes whose every pixel is known in
-// closed form, which the tests of every stage render (docs/README.md, "Tests against closed forms").
+// closed form, which the tests of every stage render (docs/testing.md).
 #include "common/scene/analytic_scenes.h"
 
 #include <cmath>

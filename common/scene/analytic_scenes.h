@@ -1,6 +1,6 @@
 // The numbers of the built-in analytic scenes, shared by builtin_scenes.cpp (which builds
 // them) and the tests (which compute their images in closed form). Each scene is one whose
-// every pixel is known: docs/README.md, "Tests against closed forms".
+// every pixel is known: docs/testing.md.
 #pragma once
 
 #include <glm/glm.hpp>

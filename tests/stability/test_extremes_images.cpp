@@ -52,7 +52,7 @@ TEST_CASE("stability: furnace boxes of albedo 0.99 and 0.999 reach Le / (1 - alb
   // path has 1000 bounces, 37% of paths pass the default depth cap of 1000 (which would
   // give 1 - 0.999^1000 = 632 instead of 1000), so the cap is raised to where what it cuts,
   // 1000 x 0.999^20000 = 2e-6, is far below the noise.
-  // lavapipe ends a kernel's loops after 65535 iterations in all (render_pixel.glsl): 16
+  // lavapipe ends a kernel's loops after 65535 iterations in all (gpu/kernel_main.glsl): 16
   // samples of 1000 bounces over 12 triangles are far more. The GPU backend then renders
   // one sample per invocation (gpu_backend.cpp), which is enough at 0.99; a single path of
   // more than about 2700 bounces (stage4) is still cut. The image is then wrong, and the run

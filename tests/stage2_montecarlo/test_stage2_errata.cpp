@@ -1,4 +1,4 @@
-// The article's printed formulas that a correct stage2 must not follow (NOTES.md errata
+// The article's printed formulas that a correct stage2 must not follow (docs/errata.md, errata
 // 1, 3 and 4), each shown to matter: the printed Eq. (3) factor fails the furnace test,
 // and the fixed roulette's second moment per bounce exceeds 1 at albedo 0.8 while the
 // throughput roulette's does not. Also: the depth cap is a counted safety net.
@@ -16,7 +16,7 @@
 // stage2's integrator built as the article prints Eq. (3): the factor 1/(2 pi N).
 namespace printed {
 #include "cpu/kernel_begin.h"
-#include "printed/stage2_eq3.glsl"  // the integrator as the article prints it (tests/CMakeLists.txt)
+#include "printed/stage2_eq3.glsl"  // the integrator as the article prints it (tests/printed_formulas.cmake)
 #include "cpu/kernel_end.h"
 }  // namespace printed
 

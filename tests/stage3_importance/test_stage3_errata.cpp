@@ -1,5 +1,5 @@
 // Erratum 2: Eq. (4) as printed is Eq. (3) again, with no pdf. Built from stage3's own
-// integrator (printed/stage3_eq4.glsl, written by tests/CMakeLists.txt), it fails the furnace test, which f cos / pdf passes.
+// integrator (printed/stage3_eq4.glsl, written by tests/printed_formulas.cmake), it fails the furnace test, which f cos / pdf passes.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -14,7 +14,7 @@
 namespace {  // internal linkage: each namespace below compiles its own copy
 namespace eq4_printed {
 #include "cpu/kernel_begin.h"
-#include "printed/stage3_eq4.glsl"  // the integrator as the article prints it (tests/CMakeLists.txt)
+#include "printed/stage3_eq4.glsl"  // the integrator as the article prints it (tests/printed_formulas.cmake)
 #include "cpu/kernel_end.h"
 }  // namespace eq4_printed
 }  // namespace

@@ -14,7 +14,7 @@
 namespace {
 namespace eq5_printed {
 #include "cpu/kernel_begin.h"
-#include "printed/stage4_eq5.glsl"  // the integrator as the article prints it (tests/CMakeLists.txt)
+#include "printed/stage4_eq5.glsl"  // the integrator as the article prints it (tests/printed_formulas.cmake)
 #include "cpu/kernel_end.h"
 }  // namespace eq5_printed
 }  // namespace
