@@ -4,9 +4,9 @@
 // Written in the GLSL/C++ subset (docs/README.md): it runs on both backends.
 
 // ray: the camera ray (ray.origin, ray.dir). Return, as the contract says:
-//   - params.sky (as a vec3) when the ray meets nothing (intersect_scene, kPrimNone);
+//   - params.sky when the ray meets nothing (intersect_scene, kPrimNone);
 //   - the emission of the surface hit if it emits and the ray sees its emitting side
-//     (surface.front, or either side when material.emission.w > 0);
+//     (surface.front, or either side when material.double_sided != 0u);
 //   - otherwise the surface's base colour ("every object emits", the article's assumption).
 vec3 lab1_Li(Ray ray) {
   // Your code here. Remove the line below when you are done.

@@ -1,4 +1,4 @@
-// One pass over one pixel: params.image.w samples, from sample index params.image.z on,
+// One pass over one pixel: params.sample_count samples, from sample index params.first_sample on,
 // each through a point jittered uniformly inside the pixel (box filter, the contract (README.md)).
 // Every stage defines `vec3 Li(Ray ray)`, its estimate of the radiance along a camera ray
 // (Eq. 2, 3, 4 or 5); this file is included after it and is the same for all stages.
@@ -18,12 +18,12 @@ vec4 render_pixel(uint x, uint y) {
   vec3 sum = vec3(0.0f);
   float scale = 0.0f;  // the largest |luminance| so far
   float ssq = 1.0f;    // sum of (luminance / scale)^2
-  uint pixel_index = y * params.image.x + x;
+  uint pixel_index = y * params.width + x;
   uint s = 0u;
-  for (; s < params.image.w; s++) {
-    rng_seed(pixel_index, params.image.z + s, params.options.x);
-    float fx = (float(x) + rng_next_float()) / float(params.image.x);
-    float fy = (float(y) + rng_next_float()) / float(params.image.y);
+  for (; s < params.sample_count; s++) {
+    rng_seed(pixel_index, params.first_sample + s, params.seed);
+    float fx = (float(x) + rng_next_float()) / float(params.width);
+    float fy = (float(y) + rng_next_float()) / float(params.height);
     vec3 L = Li(camera_ray(params.camera, vec2(fx, fy)));
     // A NaN or infinite sample would poison the pixel for ever: drop it and count it.
     if (any(isnan(L)) || any(isinf(L))) {
@@ -46,10 +46,10 @@ vec4 render_pixel(uint x, uint y) {
   // iterations have run in all of them together (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS):
   // bounces x triangles tested x samples of the pass. Paths were cut short (the furnace of
   // albedo 0.999 rendered 160-600 instead of 1000 on the GPU only). After that every loop
-  // runs once at most: a loop that must run image.w + 1 times tells, and the host reports it.
+  // runs once at most: a loop that must run sample_count + 1 times tells, and the host reports it.
   uint probe = 0u;
-  for (uint i = 0u; i <= params.image.w; i++) probe++;
-  if (s != params.image.w || probe != params.image.w + 1u) atomicAdd(counters[kCounterLoopLimit], 1u);
+  for (uint i = 0u; i <= params.sample_count; i++) probe++;
+  if (s != params.sample_count || probe != params.sample_count + 1u) atomicAdd(counters[kCounterLoopLimit], 1u);
   return vec4(sum, scale * sqrt(ssq));
 }
 

@@ -181,7 +181,7 @@ class SceneBuilder {
     glm::vec3 power = intensity * color;
     if (!std::isfinite(power.x + power.y + power.z))
       fail(file_, where + ": intensity x color overflows: " + gltf::kReexport);
-    scene_.point_lights.push_back(PointLight{glm::vec4(position, 1.0f), glm::vec4(power, 0.0f)});
+    scene_.point_lights.push_back(PointLight{position, 0.0f, power, 0.0f});
   }
 
   void add_mesh(int mesh_index, const glm::dmat4& world) {

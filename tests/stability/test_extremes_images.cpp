@@ -234,8 +234,8 @@ TEST_CASE("stability: GGX roughness from 0 to 1: finite images of the closed-for
   for (float alpha : {0.0f, 0.5f * kGgxMirrorAlpha, 2.0f * kGgxMirrorAlpha, 1e-6f, 1e-4f, 1e-3f, 0.05f, 0.5f, 1.0f}) {
     Scene scene;
     Material metal = make_metal(glm::vec3(1.0f), 0.5f);
-    metal.kind.x = kMaterialConductor;
-    metal.params.y = alpha;
+    metal.kind = kMaterialConductor;
+    metal.alpha = alpha;
     uint m = scene.add_material(metal);
     add_quad(scene, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, {-100, 0, -100}, m);
     scene.camera = orthographic_camera(glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, -1), 1.0f, 1.0f);
