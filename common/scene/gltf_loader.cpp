@@ -1,7 +1,7 @@
 // The glTF 2.0 loader of the contract (README.md) "Scenes": every triangle primitive of the default
 // scene with node transforms applied, metallic-roughness factors as materials,
 // KHR_lights_punctual point lights and the first camera. Checks of the file itself live
-// in gltf_validate.cpp; what is not modelled is named once on stderr.
+// behind gltf_validate.h; what is not modelled is named once on stderr.
 #include <cmath>
 #include <map>
 #include <string>
