@@ -1,6 +1,7 @@
-// Tests of the glTF loader (the contract (README.md) "Scenes"; common/scene/gltf_loader.cpp): each rule on a
-// small fixture from tests/data/gltf (written by make_fixtures.py), and each kind of
-// malformed file turned into pt::Error with exit code 3 and a one-line message.
+// Tests of the glTF loader (the contract (README.md) "Scenes"; common/scene/gltf_loader.cpp): the
+// geometry and the camera each rule gives on a small fixture from tests/data/gltf (written
+// by make_fixtures.py), and the shipped scenes. Materials and lights: test_gltf_materials.cpp;
+// malformed files: test_gltf_malformed.cpp.
 #include <catch2/catch.hpp>
 
 #include <unistd.h>  // dup, dup2: capturing stderr
@@ -10,58 +11,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <sstream>
 #include <string>
 
-#include "common/base/error.h"
-#include "common/scene/scene_loading.h"
+#include "tests/support/gltf_checks.h"
+
+using namespace pt::test;
 
 namespace {
-
-std::string fixture(const std::string& name) { return std::string(PT_TEST_DATA_DIR) + "/gltf/" + name; }
-
-pt::Scene load(const std::string& name) { return pt::load_gltf(fixture(name)); }
-
-void check_point(glm::vec3 got, glm::vec3 want) {
-  INFO("got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y << ", "
-               << want.z << ")");
-  CHECK(got.x == Approx(want.x).margin(1e-5));
-  CHECK(got.y == Approx(want.y).margin(1e-5));
-  CHECK(got.z == Approx(want.z).margin(1e-5));
-}
-
-void check_triangle(const pt::Triangle& t, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-  check_point(t.p0, a);
-  check_point(t.p1, b);
-  check_point(t.p2, c);
-}
-
-// The material of the triangle whose first vertex has this x (fixtures place one
-// triangle per material along x).
-const pt::Material& material_at(const pt::Scene& scene, float x) {
-  for (const pt::Triangle& t : scene.triangles) {
-    if (t.p0.x == x) return scene.materials.at(t.material);
-  }
-  FAIL("no triangle at x = " << x);
-  throw 0;
-}
-
-// The loader's failure on a fixture: the exit code and one-line message it carries.
-void require_bad_scene(const std::string& path, std::initializer_list<const char*> words) {
-  int code = 0;
-  std::string message;
-  try {
-    pt::load_gltf(path);
-  } catch (const pt::Error& e) {
-    code = e.code();
-    message = e.what();
-  }
-  INFO("message: " << message);
-  REQUIRE(code == pt::kExitBadScene);
-  CHECK(message.find('\n') == std::string::npos);
-  for (const char* word : words) CHECK_THAT(message, Catch::Contains(word));
-}
 
 // Collects what is written to stderr (file descriptor 2) while it lives.
 class StderrCapture {
@@ -256,183 +213,6 @@ TEST_CASE("an orthographic camera keeps xmag and ymag as half-extents", "[loader
 
 TEST_CASE("a file without a camera leaves the scene's camera empty", "[loader]") {
   CHECK_FALSE(load("transform_trs.gltf").camera.has_value());
-}
-
-// --- Materials ------------------------------------------------------------------------
-
-TEST_CASE("metallic-roughness factors become the contract's materials", "[loader]") {
-  pt::Scene scene = load("materials.gltf");  // triangle i at x = 2i
-  SECTION("metallic 0 is Lambertian with the base colour as albedo") {
-    const pt::Material& m = material_at(scene, 0);
-    CHECK(m.kind == pt::kMaterialDiffuse);
-    check_point(m.base_color, {0.8f, 0.2f, 0.1f});
-  }
-  SECTION("metallic 1 with roughness 0 is a mirror") {
-    CHECK(material_at(scene, 2).kind == pt::kMaterialMirror);
-  }
-  SECTION("metallic 1 with roughness 0.5 is GGX with alpha = roughness^2") {
-    const pt::Material& m = material_at(scene, 4);
-    CHECK(m.kind == pt::kMaterialConductor);
-    CHECK(m.alpha == Approx(0.25f));
-    check_point(m.base_color, {0.95f, 0.64f, 0.54f});
-  }
-  SECTION("metallic between 0 and 1 mixes conductor and diffuse") {
-    const pt::Material& m = material_at(scene, 6);
-    CHECK(m.kind == pt::kMaterialMixed);
-    CHECK(m.metallic == Approx(0.25f));
-    CHECK(m.alpha == Approx(0.16f));
-  }
-  SECTION("transmission is glass with ior 1.5 by default") {
-    const pt::Material& m = material_at(scene, 8);
-    CHECK(m.kind == pt::kMaterialGlass);
-    CHECK(m.ior == Approx(1.5f));
-  }
-  SECTION("KHR_materials_ior sets the glass's ior; the base colour tints it") {
-    const pt::Material& m = material_at(scene, 10);
-    CHECK(m.kind == pt::kMaterialGlass);
-    CHECK(m.ior == Approx(1.33f));
-    check_point(m.base_color, {0.9f, 1.0f, 0.9f});
-  }
-  SECTION("emission is emissiveFactor times emissiveStrength, front face only") {
-    const pt::Material& m = material_at(scene, 12);
-    check_point(m.emission, {4.0f, 2.0f, 1.0f});
-    CHECK(m.double_sided == 0u);
-  }
-  SECTION("doubleSided emits from both faces") {
-    const pt::Material& m = material_at(scene, 14);
-    check_point(m.emission, {1.0f, 1.0f, 1.0f});
-    CHECK(m.double_sided == 1u);
-    CHECK(m.kind == pt::kMaterialDiffuse);
-  }
-  SECTION("no material is glTF's default: base colour 1, metallic 1, roughness 1") {
-    const pt::Material& m = material_at(scene, 16);
-    CHECK(m.kind == pt::kMaterialConductor);
-    CHECK(m.alpha == Approx(1.0f));
-    check_point(m.base_color, {1, 1, 1});
-  }
-  SECTION("each material used is added once; unused ones are not") {
-    REQUIRE(scene.triangles.size() == 10);
-    CHECK(scene.triangles[9].material == scene.triangles[0].material);
-    CHECK(scene.materials.size() == 9);
-  }
-}
-
-// --- Lights ---------------------------------------------------------------------------
-
-TEST_CASE("KHR_lights_punctual point lights sit at their node with intensity times colour", "[loader]") {
-  pt::Scene scene = load("point_light.gltf");  // a spot and a directional light are skipped
-  REQUIRE(scene.point_lights.size() == 2);
-  check_point(scene.point_lights[0].position, {1, 2, 0});
-  check_point(scene.point_lights[0].intensity, {5, 10, 2.5f});
-  check_point(scene.point_lights[1].position, {0, 0, -4});
-  check_point(scene.point_lights[1].intensity, {3, 3, 3});  // colour defaults to white
-}
-
-// --- Malformed files --------------------------------------------------------------------
-
-TEST_CASE("a missing file is an error that names it", "[loader]") {
-  require_bad_scene(fixture("no_such_scene.gltf"), {"no_such_scene.gltf", "no such file"});
-}
-
-TEST_CASE("a file that is neither .gltf nor .glb is an error", "[loader]") {
-  require_bad_scene(fixture("scene.obj"), {"scene.obj", ".gltf or .glb"});
-}
-
-TEST_CASE("invalid JSON is an error", "[loader]") {
-  require_bad_scene(fixture("bad_json.gltf"), {"bad_json.gltf:", "invalid JSON"});
-}
-
-TEST_CASE("tinygltf's own parse errors become one line", "[loader]") {
-  require_bad_scene(fixture("tinygltf_error.gltf"), {"tinygltf_error.gltf:", "'type'"});
-}
-
-TEST_CASE("an accessor running past its bufferView is an error", "[loader]") {
-  require_bad_scene(fixture("accessor_past_view.gltf"),
-                    {"accessors[0] (POSITION of meshes[0].primitives[0])", "runs past bufferViews[0]",
-                     "needs 480 bytes, has 36", "re-export"});
-}
-
-TEST_CASE("a bufferView running past its buffer is an error", "[loader]") {
-  require_bad_scene(fixture("view_past_buffer.gltf"),
-                    {"bufferViews[0]", "runs past buffers[0]", "needs 44 bytes, has 40"});
-}
-
-TEST_CASE("an accessor byteOffset near 2^64 does not wrap around", "[loader]") {
-  require_bad_scene(fixture("accessor_offset_2_64.gltf"), {"runs past bufferViews[0]", "overflow"});
-}
-
-TEST_CASE("a bufferView byteOffset near 2^64 does not wrap around", "[loader]") {
-  require_bad_scene(fixture("view_offset_2_64.gltf"), {"runs past buffers[0]", "overflow"});
-}
-
-TEST_CASE("an accessor with count 0 is an error", "[loader]") {
-  require_bad_scene(fixture("count_zero.gltf"), {"accessors[0]", "count 0"});
-}
-
-TEST_CASE("an index past the vertex count is an error", "[loader]") {
-  require_bad_scene(fixture("index_past_vertices.gltf"),
-                    {"indices of meshes[0].primitives[0]", "is 7", "vertex count (3)"});
-}
-
-TEST_CASE("a material index out of range is an error", "[loader]") {
-  require_bad_scene(fixture("material_out_of_range.gltf"),
-                    {"meshes[0].primitives[0].material = 5", "out of range"});
-}
-
-TEST_CASE("a mesh index out of range is an error", "[loader]") {
-  require_bad_scene(fixture("mesh_out_of_range.gltf"), {"nodes[0].mesh = 3", "out of range"});
-}
-
-TEST_CASE("a node index out of range is an error", "[loader]") {
-  require_bad_scene(fixture("node_out_of_range.gltf"), {"nodes[0].children[0] = 9", "out of range"});
-}
-
-TEST_CASE("an index too large for an int is an error, not truncated", "[loader]") {
-  require_bad_scene(fixture("index_too_large.gltf"), {"nodes[0].mesh = 4294967296", "out of range"});
-}
-
-TEST_CASE("a node that is its own child is an error", "[loader]") {
-  require_bad_scene(fixture("node_own_child.gltf"), {"nodes[0] is its own child", "cycle"});
-}
-
-TEST_CASE("a cycle through two nodes is an error", "[loader]") {
-  require_bad_scene(fixture("node_cycle.gltf"), {"own ancestor", "cycle"});
-}
-
-TEST_CASE("a NaN position is an error", "[loader]") {
-  require_bad_scene(fixture("nan_position.gltf"), {"vertex 1", "not finite", "nan"});
-}
-
-TEST_CASE("an infinite position is an error", "[loader]") {
-  require_bad_scene(fixture("inf_position.gltf"), {"vertex 2", "not finite", "inf"});
-}
-
-TEST_CASE("a translation that is infinite as a 32-bit float is an error", "[loader]") {
-  require_bad_scene(fixture("huge_translation.gltf"), {"nodes[0].translation[0]", "not a finite"});
-}
-
-TEST_CASE("a required extension that is not supported is an error naming it", "[loader]") {
-  require_bad_scene(fixture("required_extension.gltf"), {"extensionsRequired", "KHR_draco_mesh_compression"});
-}
-
-TEST_CASE("positions that are not 32-bit floats are an error", "[loader]") {
-  require_bad_scene(fixture("position_not_float.gltf"), {"POSITION", "VEC3 of FLOAT"});
-}
-
-TEST_CASE("buffer URIs may not leave the scene's folder", "[loader]") {
-  for (const char* name : {"uri_dotdot.gltf", "uri_absolute.gltf", "uri_encoded_dotdot.gltf"}) {
-    INFO(name);
-    require_bad_scene(fixture(name), {"buffers[0].uri", "outside the scene's folder"});
-  }
-}
-
-TEST_CASE("an image whose bufferView runs past its buffer is an error", "[loader]") {
-  require_bad_scene(fixture("image_view_past_buffer.gltf"),
-                    {"images[0]", "runs past buffers[0]", "needs 1036 bytes, has 44"});
-}
-
-TEST_CASE("a .glb whose BIN chunk runs past the end of the file is an error", "[loader]") {
-  require_bad_scene(fixture("truncated.glb"), {"truncated.glb:", "BIN chunk"});
 }
 
 // --- Shipped scenes ---------------------------------------------------------------------
