@@ -3,8 +3,9 @@
 // ray per invocation read from a buffer, the hit written out; no camera, sampling or film.
 // Comparable with the CPU row "intersect_scene (renderer)" and with the naive loop
 // (naive_raycast.comp). Article: the raycasting step (Eq. 2), its closest-hit search. The
-// rays sit in binding 3 (gpu/kernel_bindings.glsl's point_lights: two vec4 each, read here as origin
-// and direction); params.counts.x is the triangle count, params.image.x the ray count.
+// rays sit in binding 3 (gpu/kernel_bindings.glsl's point_lights: a position and an intensity 16 bytes
+// apart, read here as origin and direction); params.triangle_count is the triangle count,
+// params.width the ray count.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common/kernel/scene_types.h"
@@ -17,8 +18,8 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= params.image.x) return;
-  Ray ray = Ray(vec3(point_lights[i].position), vec3(point_lights[i].intensity));
+  if (i >= params.width) return;
+  Ray ray = Ray(point_lights[i].position, point_lights[i].intensity);
   Hit hit = intersect_scene(ray, kInfinity);
   pass_output[i] = vec4(hit.t, hit.b1, hit.b2, float(hit.prim));
 }

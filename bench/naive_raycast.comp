@@ -8,11 +8,13 @@
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
-struct Triangle {
-  vec4 p0;
-  vec4 p1;
-  vec4 p2;
-  uvec4 info;
+struct Triangle {  // common/kernel/scene_types.h's layout
+  vec3 p0;
+  uint material;
+  vec3 p1;
+  uint light;
+  vec3 p2;
+  uint pad;
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer TriangleBuffer { Triangle triangles[]; };
@@ -27,9 +29,9 @@ void main() {
   vec3 d = rays[2u * i + 1u].xyz;
   float best = 3.402823466e38;
   for (uint k = 0u; k < counts.x; k++) {
-    vec3 p0 = triangles[k].p0.xyz;
-    vec3 e1 = triangles[k].p1.xyz - p0;
-    vec3 e2 = triangles[k].p2.xyz - p0;
+    vec3 p0 = triangles[k].p0;
+    vec3 e1 = triangles[k].p1 - p0;
+    vec3 e2 = triangles[k].p2 - p0;
     vec3 p = cross(d, e2);
     float det = dot(e1, p);
     if (abs(det) < 1e-12) continue;

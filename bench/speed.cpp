@@ -94,7 +94,8 @@ void run_speed(const Config& config) {
   }
   kernel::triangles = scene.triangles.data();
   kernel::spheres = scene.spheres.data();
-  kernel::params.counts = glm::uvec4(uint(scene.triangles.size()), uint(scene.spheres.size()), 0u, 0u);
+  kernel::params.triangle_count = uint(scene.triangles.size());
+  kernel::params.sphere_count = uint(scene.spheres.size());
   pt::TriangleSoa triangle_soa(scene.triangles);  // as the CPU backend binds it (render.cpp)
   kernel::triangle_soa = triangle_soa.data.data();
   kernel::triangle_soa_stride = triangle_soa.stride;
@@ -107,7 +108,7 @@ void run_speed(const Config& config) {
     sink.fetch_add(sum);
   });
   SoaTriangles soa;
-  for (const Triangle& t : scene.triangles) soa.add(glm::vec3(t.p0), glm::vec3(t.p1), glm::vec3(t.p2));
+  for (const Triangle& t : scene.triangles) soa.add(t.p0, t.p1, t.p2);
   Rate reference = rays_per_second(count, [&](std::size_t first, std::size_t n) {
     sink.fetch_add(soa_closest_hits(soa, origins.data() + first, dirs.data() + first, n));
   });

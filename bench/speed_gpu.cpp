@@ -108,11 +108,11 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   gpu::Buffer unused_uniform(context, 64, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   // The triangles again as a uniform buffer if they fit, as gpu_backend.cpp binds them.
   gpu::UniformTriangles uniform = gpu::uniform_triangles(context, scene.triangles);
-  // FrameParams for intersect_scene (counts.x: triangles, image.x: rays); the naive kernel
-  // reads only its first uvec4, the same two counts.
+  // FrameParams for intersect_scene (triangle_count, and width: the ray count); the naive
+  // kernel reads the same two counts from a uvec4 of its own.
   FrameParams params{};
-  params.image = glm::uvec4(uint(count), 1u, 0u, 1u);
-  params.counts = glm::uvec4(uint(scene.triangles.size()), 0u, 0u, 0u);
+  params.width = uint(count), params.height = 1u, params.first_sample = 0u, params.sample_count = 1u;
+  params.triangle_count = uint(scene.triangles.size());
   gpu::Buffer renderer_params(context, sizeof(FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   renderer_params.write(&params, sizeof params);
   glm::uvec4 counts(uint(scene.triangles.size()), uint(count), 0u, 0u);

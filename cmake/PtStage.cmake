@@ -39,8 +39,8 @@ function(pt_add_stage DIR)
 #include \"common/kernel/render_pixel.glsl\"
 #include \"gpu/kernel_main.glsl\"
 ")
-  pt_embed_shader(${DIR} ${out}/kernel.comp)
-  add_custom_target(${DIR}_spirv DEPENDS ${${DIR}_SPIRV_HEADER})  # the GPU kernel alone
+  pt_embed_shader(${DIR}_kernel ${out}/kernel.comp)
+  add_custom_target(${DIR}_spirv DEPENDS ${${DIR}_kernel_SPIRV_HEADER})  # the GPU kernel alone
 
   math(EXPR count "1 << ${ARG_CPU_GROUPS}")
   math(EXPR last "${count} - 1")
@@ -85,17 +85,17 @@ pt::StageKernels kernels();
 "// Written by cmake/PtStage.cmake: ${DIR}'s kernel in both forms, its CPU variants in the
 // order of cpu/cpu_variants.h.
 #include \"${DIR}/kernels.h\"
-#include \"${DIR}_spirv.h\"
+#include \"${DIR}_kernel_spirv.h\"
 
 namespace ${ns} {
 ${declarations}
 pt::StageKernels kernels() {
   static const pt::CpuKernel cpu[] = {${table}};
-  return pt::StageKernels{\"${DIR}\", cpu, ${DIR}_spirv, ${uses_lights}};
+  return pt::StageKernels{\"${DIR}\", cpu, ${DIR}_kernel_spirv, ${uses_lights}};
 }
 }  // namespace ${ns}
 ")
-  add_library(pt_${DIR} STATIC ${sources} ${out}/kernels.cpp ${${DIR}_SPIRV_HEADER})
+  add_library(pt_${DIR} STATIC ${sources} ${out}/kernels.cpp ${${DIR}_kernel_SPIRV_HEADER})
   target_include_directories(pt_${DIR} PUBLIC ${CMAKE_CURRENT_BINARY_DIR} PRIVATE ${out})
   target_link_libraries(pt_${DIR} PUBLIC pt_common)
   add_executable(${DIR} ${src}/main.cpp)

@@ -50,7 +50,7 @@ class CpuBackend : public Backend {
     scene.counters = result.counters;
     kernel_.bind(scene, params);
     // Rows are taken a few at a time from a shared counter: cheap load balancing.
-    const uint height = params.image.y, rows_per_task = 4;
+    const uint height = params.height, rows_per_task = 4;
     std::atomic<uint> next_row{0};
     auto work = [&] {
       for (uint y0; (y0 = next_row.fetch_add(rows_per_task)) < height;) {

@@ -18,7 +18,7 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
 // Renders rows [y0, y1) of the pass into out[y * width + x] (called on many threads).
 inline void cpu_render_rows(uint y0, uint y1, glm::vec4* out) {
   for (uint y = y0; y < y1; y++) {
-    for (uint x = 0u; x < params.image.x; x++) out[y * params.image.x + x] = render_pixel(x, y);
+    for (uint x = 0u; x < params.width; x++) out[y * params.width + x] = render_pixel(x, y);
   }
 }
 

@@ -7,6 +7,9 @@
 //   loops with a throughput); float literals with an f suffix; no swizzles (single members
 //   .x .y .z .w only); structs built as Type(a, b, c); per-invocation state (rng_state) is
 //   a global, thread_local here; scene arrays are globals: SSBOs in GLSL, pointers here.
+//   A vec3 field of the scene arrays that is an operand of arithmetic is read as
+//   vec3(field): the arrays stay float where a test builds a kernel in double
+//   (tests/stability/test_float_double.cpp), and the constructor converts it there.
 #pragma once
 
 #include <atomic>

@@ -74,7 +74,7 @@ template <int bytes>
   using L = Lanes<bytes>;
   using F = typename L::F;
   using I = typename L::I;
-  const std::size_t n = params.counts.x;
+  const std::size_t n = params.triangle_count;
   const std::size_t stride = triangle_soa_stride;
   // Array (vertex v, axis k) starts at triangle_soa + (3 v + k) stride; the ray's axes are
   // chosen once here, so the loop below indexes nothing at run time.

@@ -19,7 +19,7 @@ constexpr uint32_t kUniformTrianglesBinding = 8;
 // The buffer for binding 8 and the value of the kernel's constant kUniformTriangles: the
 // triangles copied into a uniform buffer if they fit (then `constant` is the capacity on
 // this device: its largest uniform buffer, at most 64 KiB, a GPU's constant cache, in
-// 64-byte triangles, less one since the kernel declares kUniformTriangles + 1, and the
+// 48-byte triangles, less one since the kernel declares kUniformTriangles + 1, and the
 // buffer is capacity + 1 triangles long, the same for every scene that fits, so that one
 // pipeline serves them all); else a one-triangle placeholder and `constant` 0.
 struct UniformTriangles {

@@ -90,9 +90,9 @@ class GpuBackend : public Backend {
     passes_++;
     ensure_output(VkDeviceSize(out.size_bytes()));
     if (!pipeline_) throw std::logic_error("run_pass before set_scene");
-    if (!one_sample_ || params.image.w <= 1) {
+    if (!one_sample_ || params.sample_count <= 1) {
       PassResult result = run_dispatches(params, out);
-      if (result.counters[kCounterLoopLimit] == 0 || params.image.w <= 1) return result;
+      if (result.counters[kCounterLoopLimit] == 0 || params.sample_count <= 1) return result;
       // lavapipe's loop budget per invocation ran out (gpu/kernel_main.glsl): the pass is wrong.
       // From now on every invocation renders one sample, the pass again included.
       one_sample_ = true;
@@ -101,17 +101,17 @@ class GpuBackend : public Backend {
   }
 
  private:
-  // The pass as image.w passes of one sample each (the same sample indices, so the same
+  // The pass as sample_count passes of one sample each (the same sample indices, so the same
   // samples), added up on the host as render_pixel() adds its samples: the radiance sums,
   // and the roots of the sums of squared luminance as the root of their squares' sum.
   PassResult run_one_sample_at_a_time(const FrameParams& params, std::span<glm::vec4> out) {
     std::vector<glm::dvec4> sum(out.size(), glm::dvec4(0.0));
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
-    for (uint i = 0; i < params.image.w; i++) {
+    for (uint i = 0; i < params.sample_count; i++) {
       FrameParams one = params;
-      one.image.z = params.image.z + i;
-      one.image.w = 1u;
+      one.first_sample = params.first_sample + i;
+      one.sample_count = 1u;
       PassResult part = run_dispatches(one, out);
       for (std::size_t p = 0; p < out.size(); p++) {
         sum[p] += glm::dvec4(glm::dvec3(out[p]), double(out[p].w) * double(out[p].w));
@@ -128,7 +128,7 @@ class GpuBackend : public Backend {
 
   // Runs the pass `params` over the whole image in dispatches of bounded work.
   PassResult run_dispatches(const FrameParams& params, std::span<glm::vec4> out) {
-    const uint32_t width = params.image.x, height = params.image.y;
+    const uint32_t width = params.width, height = params.height;
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_,   &materials_, &point_lights_,     &params_,
                                             &output_,    &counters_, &lights_,    &uniform_triangles_};
     pipeline_->bind_buffers(buffers);
@@ -138,7 +138,7 @@ class GpuBackend : public Backend {
 
     // Rows per dispatch: a bounded amount of work, a whole number of workgroups.
     const VkPhysicalDeviceLimits& limits = context_.properties().limits;
-    uint64_t rows = kPixelSamplesPerDispatch / (uint64_t(width) * std::max(1u, params.image.w));
+    uint64_t rows = kPixelSamplesPerDispatch / (uint64_t(width) * std::max(1u, params.sample_count));
     rows = std::clamp<uint64_t>(rows / kGroupSize * kGroupSize, kGroupSize,
                                 uint64_t(limits.maxComputeWorkGroupCount[1]) * kGroupSize);
     const uint32_t groups_x = (width + kGroupSize - 1) / kGroupSize;
@@ -149,7 +149,7 @@ class GpuBackend : public Backend {
     for (uint32_t row0 = 0; row0 < height; row0 += uint32_t(rows)) {
       uint32_t n = uint32_t(std::min<uint64_t>(rows, height - row0));
       FrameParams chunk = params;
-      chunk.options.w = row0;
+      chunk.first_row = row0;
       params_.write(&chunk, sizeof chunk);
       result.kernel_seconds += dispatch(groups_x, (n + kGroupSize - 1) / kGroupSize);
     }

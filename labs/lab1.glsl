@@ -9,9 +9,9 @@
 #include "common/kernel/intersect.glsl"
 
 // ray: the camera ray (ray.origin, ray.dir). Return, as the contract says:
-//   - params.sky (as a vec3) when the ray meets nothing (intersect_scene, kPrimNone);
+//   - params.sky when the ray meets nothing (intersect_scene, kPrimNone);
 //   - the emission of the surface hit if it emits and the ray sees its emitting side
-//     (surface.front, or either side when material.emission.w > 0);
+//     (surface.front, or either side when material.double_sided != 0u);
 //   - otherwise the surface's base colour ("every object emits", the article's assumption).
 vec3 Li(Ray ray) {
   // Your code here. Remove the line below when you are done.

@@ -8,15 +8,15 @@
 #include "labs/lab_support.glsl"
 #include "common/kernel/lights.glsl"
 
-// index: the triangle (triangles[index], corners p0 p1 p2, material materials[tri.info.x]);
+// index: the triangle (triangles[index], corners p0 p1 p2, material materials[tri.material]);
 // p: the shading point; u: two uniform numbers in [0, 1); pick: the probability with which
 // this light was chosen. Draw a point y uniform on the triangle's area and return
 //   LightSample(wi, dist, Le / pdf, pdf)
 // where wi is the unit direction from p to y, dist = |y - p|, Le the material's emission,
 // and pdf the density of wi in solid angle times pick: (1 / A) * d^2 / cos_y * pick, with
 // cos_y the cosine at y between the triangle's normal and -wi. The triangle emits from its
-// front face only (cross(p1 - p0, p2 - p0) points out of it) unless emission.w > 0
-// (double-sided: use |cos_y|). Return no_light() when y does not face p.
+// front face only (cross(p1 - p0, p2 - p0) points out of it) unless the material is
+// double-sided (double_sided != 0u: use |cos_y|). Return no_light() when y does not face p.
 LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   // Your code here. Remove the line below when you are done.
   float nan = PT_LAB_NOT_WRITTEN(4, sample_triangle_light) * u.x * pick;

@@ -10,12 +10,12 @@
 // Eq. (2): the radiance leaving the first surface towards the camera is its own.
 vec3 Li(Ray ray) {
   Hit hit = intersect_scene(ray, kInfinity);
-  if (hit.kind == kPrimNone) return vec3(params.sky);
+  if (hit.kind == kPrimNone) return params.sky;
   Surface surface = surface_at(ray, hit);
   Material material = materials[surface.material];
   // Le: an emitter shines from its front face, or from both when double-sided.
   bool emits = max(material.emission.x, max(material.emission.y, material.emission.z)) > 0.0f;
-  if (emits && (surface.front || material.emission.w > 0.0f)) return vec3(material.emission);
+  if (emits && (surface.front || material.double_sided != 0u)) return material.emission;
   // The article's assumption: every other object "emits" its base colour.
-  return vec3(material.base_color);
+  return material.base_color;
 }

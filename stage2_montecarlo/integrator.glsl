@@ -15,7 +15,7 @@ vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path
   vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
   for (uint depth = 0u;; depth++) {
-    if (depth == params.options.z) {  // a safety net far beyond what roulette reaches
+    if (depth == params.depth_cap) {  // a safety net far beyond what roulette reaches
       atomicAdd(counters[kCounterDepthCap], 1u);
       break;
     }
@@ -45,7 +45,7 @@ vec3 Li(Ray ray) {
       beta *= (1.0f / uniform_hemisphere_pdf()) * eval_lobe(lobe, material, wo, wi) * wi.z;
     }
 
-    float survive = russian_roulette(beta, params.options.y);
+    float survive = russian_roulette(beta, params.roulette);
     if (survive == 0.0f) break;
     beta *= survive;
     ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));

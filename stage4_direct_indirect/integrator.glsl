@@ -17,7 +17,7 @@ vec3 Li(Ray ray) {
   vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
   bool specular = true;    // camera ray, or the last bounce was a delta (mirror, glass)
   for (uint depth = 0u;; depth++) {
-    if (depth == params.options.z) {  // a safety net far beyond what roulette reaches
+    if (depth == params.depth_cap) {  // a safety net far beyond what roulette reaches
       atomicAdd(counters[kCounterDepthCap], 1u);
       break;
     }
@@ -67,7 +67,7 @@ vec3 Li(Ray ray) {
       specular = false;
     }
 
-    float survive = russian_roulette(beta, params.options.y);
+    float survive = russian_roulette(beta, params.roulette);
     if (survive == 0.0f) break;
     beta *= survive;
     ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));

@@ -10,7 +10,7 @@
 // Le of Eq. (1): a surface emits from its front face only (counter-clockwise winding, the
 // geometric normal's side), or from both faces when its material is double-sided.
 vec3 emitted_radiance(Material m, bool front) {
-  return (front || m.emission.w > 0.0f) ? vec3(m.emission) : vec3(0.0f);
+  return (front || m.double_sided != 0u) ? vec3(m.emission) : vec3(0.0f);
 }
 
 vec3 schlick_fresnel(vec3 f0, float cos_theta) {
@@ -122,19 +122,19 @@ vec3 lambert_brdf(vec3 albedo, vec3 wo, vec3 wi) {
 // with probability metallic, else the diffuse (the contract (README.md)); u is a uniform number.
 // A conductor with alpha below kGgxMirrorAlpha scatters as the perfect mirror.
 uint choose_lobe(Material m, float u) {
-  uint kind = m.kind.x;
+  uint kind = m.kind;
   if (has_feature(kFeatureConductor) && kind == kMaterialConductor) {
-    return m.params.y < kGgxMirrorAlpha ? kMaterialMirror : kind;  // alpha ~ 0: a mirror
+    return m.alpha < kGgxMirrorAlpha ? kMaterialMirror : kind;  // alpha ~ 0: a mirror
   }
   if (!has_feature(kFeatureMixed) || kind != kMaterialMixed) return kind;
-  if (u >= m.params.x) return kMaterialDiffuse;
-  return m.params.y >= kGgxMirrorAlpha ? kMaterialConductor : kMaterialMirror;
+  if (u >= m.metallic) return kMaterialDiffuse;
+  return m.alpha >= kGgxMirrorAlpha ? kMaterialConductor : kMaterialMirror;
 }
 
 // f of a non-delta lobe (kMaterialDiffuse or kMaterialConductor).
 vec3 eval_lobe(uint lobe, Material m, vec3 wo, vec3 wi) {
-  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_conductor_brdf(vec3(m.base_color), m.params.y, wo, wi);
-  return lambert_brdf(vec3(m.base_color), wo, wi);
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_conductor_brdf(m.base_color, m.alpha, wo, wi);
+  return lambert_brdf(m.base_color, wo, wi);
 }
 
 // A direction drawn for a non-delta lobe in proportion to (roughly) f cos, and its pdf
@@ -146,7 +146,7 @@ struct LobeSample {
 
 LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
   if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) {
-    float alpha = m.params.y;
+    float alpha = m.alpha;
     vec3 h = sample_ggx_vndf(wo, alpha, u);
     vec3 wi = 2.0f * dot(wo, h) * h - wo;
     return LobeSample(wi, ggx_vndf_pdf(wo, wi, alpha));
@@ -156,7 +156,7 @@ LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
 }
 
 float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
-  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.params.y);
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.alpha);
   return cosine_hemisphere_pdf(wi.z);
 }
 
@@ -169,14 +169,14 @@ struct DeltaBounce {
 
 // Mirror: reflection about the normal, weighted by Schlick's Fresnel with F0 = base colour.
 DeltaBounce sample_mirror(Material m, vec3 wo) {
-  return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), schlick_fresnel(vec3(m.base_color), wo.z));
+  return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), schlick_fresnel(m.base_color, wo.z));
 }
 
 // Glass: reflect with probability F, else refract (the weight F / F = 1 or
 // (1 - F) / (1 - F) times the tint and the radiance scale 1 / eta^2). entering: wo is on
 // the outside (front) of the surface.
 DeltaBounce sample_glass(Material m, vec3 wo, bool entering, float u) {
-  float eta = entering ? m.params.w : 1.0f / m.params.w;
+  float eta = entering ? m.ior : 1.0f / m.ior;
   float F = fresnel_dielectric(wo.z, eta);
   if (u < F) return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), vec3(1.0f));
   float cos_t = sqrt(max(0.0f, cos2_transmitted(min(abs(wo.z), 1.0f), eta)));

@@ -13,13 +13,13 @@ struct Ray {
 Ray camera_ray(Camera cam, vec2 film) {
   float sx = 2.0f * film.x - 1.0f;
   float sy = 1.0f - 2.0f * film.y;
-  vec3 forward = vec3(cam.forward);
-  vec3 right = vec3(cam.right) * (sx * cam.extent.x);
-  vec3 up = vec3(cam.up) * (sy * cam.extent.y);
-  if (cam.kind.x == kCameraOrthographic) {
+  vec3 forward = cam.forward;
+  vec3 right = vec3(cam.right) * (sx * cam.extent_x);
+  vec3 up = vec3(cam.up) * (sy * cam.extent_y);
+  if (cam.kind == kCameraOrthographic) {
     return Ray(vec3(cam.origin) + right + up, forward);
   }
-  return Ray(vec3(cam.origin), normalize(forward + right + up));
+  return Ray(cam.origin, normalize(forward + right + up));
 }
 
 #endif  // PT_CAMERA_GLSL

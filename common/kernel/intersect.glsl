@@ -112,7 +112,7 @@ Hit hit_triangle(Ray ray, RayShear rs, uint index, Hit best) {
 // The nearest hit of `best` and every triangle, tested in index order: the article's
 // brute-force search.
 Hit nearest_triangle_in_order(Ray ray, RayShear rs, Hit best) {
-  for (uint i = 0u; i < params.counts.x; i++) best = hit_triangle(ray, rs, i, best);
+  for (uint i = 0u; i < params.triangle_count; i++) best = hit_triangle(ray, rs, i, best);
   return best;
 }
 
@@ -133,8 +133,8 @@ const float kSphereRootError = 1e-6f;
 // pbrt does with interval arithmetic): a ray leaving a wall of radius 1e5 finds that wall
 // again within a few hundredths of a unit, which the spawn offset cannot step over.
 Hit hit_sphere(Ray ray, uint index, Hit best) {
-  vec3 center = vec3(spheres[index].center_radius);
-  float radius = spheres[index].center_radius.w;
+  vec3 center = spheres[index].center;
+  float radius = spheres[index].radius;
   vec3 f = ray.origin - center;
   float b = -dot(f, ray.dir);
   float l = length(f + b * ray.dir);  // from the centre to the ray's closest point
@@ -158,7 +158,7 @@ Hit intersect_scene(Ray ray, float t_max) {
   RayShear rs = make_ray_shear(ray.dir);
   if (has_feature(kFeatureTriangles)) best = nearest_triangle(ray, rs, best);
   if (has_feature(kFeatureSpheres)) {
-    for (uint i = 0u; i < params.counts.y; i++) best = hit_sphere(ray, i, best);
+    for (uint i = 0u; i < params.sphere_count; i++) best = hit_sphere(ray, i, best);
   }
   return best;
 }
@@ -174,19 +174,19 @@ struct Surface {
 Surface surface_at(Ray ray, Hit hit) {
   if (!has_feature(kFeatureSpheres) || hit.kind == kPrimTriangle) {
     Triangle tri = triangle_at(hit.prim);
-    vec3 p0 = vec3(tri.p0);
-    vec3 p1 = vec3(tri.p1);
-    vec3 p2 = vec3(tri.p2);
+    vec3 p0 = tri.p0;
+    vec3 p1 = tri.p1;
+    vec3 p2 = tri.p2;
     // The barycentric point is more accurate than origin + t * dir far from the origin.
     vec3 p = (1.0f - hit.b1 - hit.b2) * p0 + hit.b1 * p1 + hit.b2 * p2;
     vec3 n = normalize(cross(p1 - p0, p2 - p0));
-    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.info.x);
+    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.material);
   }
   Sphere sph = spheres[hit.prim];
-  vec3 center = vec3(sph.center_radius);
+  vec3 center = sph.center;
   vec3 p = ray.origin + hit.t * ray.dir;
   vec3 n = normalize(p - center);
-  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.info.x);
+  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.material);
 }
 
 #endif  // PT_INTERSECT_GLSL

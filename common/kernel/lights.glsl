@@ -25,10 +25,10 @@ LightSample no_light() {
 // The first entry whose cumulative probability exceeds u (binary search).
 uint pick_light(float u) {
   uint lo = 0u;
-  uint hi = params.lights.x - 1u;
+  uint hi = params.light_count - 1u;
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;
-    if (lights[mid].pick.y > u) hi = mid;
+    if (lights[mid].cumulative > u) hi = mid;
     else lo = mid + 1u;
   }
   return lo;
@@ -41,8 +41,8 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick);
 // From inside (or on) a sphere light: a point uniform on its area, density 1 / (4 pi r^2);
 // light reaches the inside only from a double-sided emitter.
 LightSample sample_sphere_light_inside(Sphere s, vec3 p, vec2 u, float pick) {
-  vec3 center = vec3(s.center_radius);
-  float radius = s.center_radius.w;
+  vec3 center = s.center;
+  float radius = s.radius;
   float z = 1.0f - 2.0f * u.x;
   float r = sqrt(max(0.0f, 1.0f - z * z));
   float phi = 2.0f * kPi * u.y;
@@ -51,8 +51,8 @@ LightSample sample_sphere_light_inside(Sphere s, vec3 p, vec2 u, float pick) {
   vec3 d = y - p;
   float dist2 = dot(d, d);
   float dist = sqrt(dist2);
-  Material m = materials[s.info.x];
-  if (!(dist > 0.0f) || !(m.emission.w > 0.0f)) return no_light();
+  Material m = materials[s.material];
+  if (!(dist > 0.0f) || !(m.double_sided != 0u)) return no_light();
   vec3 wi = d / dist;
   float cos_y = abs(dot(wi, n));
   if (!(cos_y > 0.0f)) return no_light();
@@ -64,8 +64,8 @@ LightSample sample_sphere_light_inside(Sphere s, vec3 p, vec2 u, float pick) {
 // 1 / (2 pi (1 - cos_max)).
 LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
   Sphere s = spheres[index];
-  vec3 center = vec3(s.center_radius);
-  float radius = s.center_radius.w;
+  vec3 center = s.center;
+  float radius = s.radius;
   vec3 to_center = center - p;
   float d2 = dot(to_center, to_center);
   // Inside, or on the surface within rounding: the cone is the whole sphere of directions.
@@ -84,7 +84,7 @@ LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
   float dist = b - sqrt(disc);
   float pdf = pick / (2.0f * kPi * (1.0f - cos_max));
   if (!(pdf > 0.0f) || isinf(pdf)) return no_light();
-  return LightSample(wi, dist, vec3(materials[s.info.x].emission) / pdf, pdf);
+  return LightSample(wi, dist, vec3(materials[s.material].emission) / pdf, pdf);
 }
 
 // A point light of intensity I (W/sr): radiance arrives from one direction, I / d^2.
@@ -108,19 +108,19 @@ LightSample sample_sky(vec3 n, vec2 u, float pick) {
 LightSample sample_light(vec3 p, vec3 n) {
   float u = rng_next_float();
   vec2 u2 = rng_next_vec2();
-  float sky_pick = has_feature(kFeatureSky) ? params.sky.w : 0.0f;
+  float sky_pick = has_feature(kFeatureSky) ? params.sky_pick : 0.0f;
   if (u < sky_pick) return sample_sky(n, u2, sky_pick);
-  if (params.lights.x == 0u) return no_light();
+  if (params.light_count == 0u) return no_light();
   uint index = pick_light((u - sky_pick) / (1.0f - sky_pick));
   Light light = lights[index];
-  float pick = (1.0f - sky_pick) * light.pick.x;
-  if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.info.x == kLightTriangle) {
-    return sample_triangle_light(light.info.y, p, u2, pick);
+  float pick = (1.0f - sky_pick) * light.pick;
+  if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.kind == kLightTriangle) {
+    return sample_triangle_light(light.index, p, u2, pick);
   }
-  if (!has_feature(kFeaturePointLights) || light.info.x == kLightSphere) {
-    return sample_sphere_light(light.info.y, p, u2, pick);
+  if (!has_feature(kFeaturePointLights) || light.kind == kLightSphere) {
+    return sample_sphere_light(light.index, p, u2, pick);
   }
-  return sample_point_light(light.info.y, p, pick);
+  return sample_point_light(light.index, p, pick);
 }
 
 // The pdf (solid angle x pick probability) with which sample_light picks, from a point,
@@ -129,13 +129,13 @@ LightSample sample_light(vec3 p, vec3 n) {
 // weigh BRDF samples with it).
 float triangle_light_pdf(uint index, vec3 wi, float dist) {
   Triangle tri = triangles[index];
-  if (tri.info.y == kNoLight) return 0.0f;
+  if (tri.light == kNoLight) return 0.0f;
   vec3 c = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));
   float area = 0.5f * length(c);
   float cos_y = dot(-wi, normalize(c));
-  if (materials[tri.info.x].emission.w > 0.0f) cos_y = abs(cos_y);
+  if (materials[tri.material].double_sided != 0u) cos_y = abs(cos_y);
   if (!(cos_y > 0.0f)) return 0.0f;
-  float pick = (1.0f - params.sky.w) * lights[tri.info.y].pick.x;
+  float pick = (1.0f - params.sky_pick) * lights[tri.light].pick;
   return dist * dist / (cos_y * area) * pick;
 }
 

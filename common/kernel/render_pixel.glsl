@@ -1,4 +1,4 @@
-// One pass over one pixel: params.image.w samples, from sample index params.image.z on,
+// One pass over one pixel: params.sample_count samples, from sample index params.first_sample on,
 // each through a point jittered uniformly inside the pixel (box filter, the contract (README.md)).
 // Every stage defines `vec3 Li(Ray ray)`, its estimate of the radiance along a camera ray
 // (Eq. 2, 3, 4 or 5); this file is included after it and is the same for all stages.
@@ -21,11 +21,11 @@ vec4 render_pixel(uint x, uint y) {
   vec3 sum = vec3(0.0f);
   float scale = 0.0f;  // the largest |luminance| so far
   float ssq = 1.0f;    // sum of (luminance / scale)^2
-  uint pixel_index = y * params.image.x + x;
-  for (uint s = 0u; s < params.image.w; s++) {
-    rng_seed(pixel_index, params.image.z + s, params.options.x);
-    float fx = (float(x) + rng_next_float()) / float(params.image.x);
-    float fy = (float(y) + rng_next_float()) / float(params.image.y);
+  uint pixel_index = y * params.width + x;
+  for (uint s = 0u; s < params.sample_count; s++) {
+    rng_seed(pixel_index, params.first_sample + s, params.seed);
+    float fx = (float(x) + rng_next_float()) / float(params.width);
+    float fy = (float(y) + rng_next_float()) / float(params.height);
     vec3 L = Li(camera_ray(params.camera, vec2(fx, fy)));
     // A NaN or infinite sample would poison the pixel for ever: drop it and count it.
     if (any(isnan(L)) || any(isinf(L))) {

@@ -1,16 +1,16 @@
 // Data layouts shared by the host (C++) and the kernels (GLSL and C++): the scene as
-// flat arrays (docs/README.md, "Scene and kernels"). Every struct is made of 16-byte vectors
-// so that std430 and C++ agree on offsets; the C++ side checks sizes with static_assert.
+// flat arrays (docs/README.md, "Scene and kernels"), one named field per value, laid out so
+// that std430, std140 and C++ agree on offsets (see the note above struct Triangle).
 // Article: the scene the intersection procedure of Eq. (2)-(5) searches, brute force.
 #ifndef PT_SCENE_TYPES_H
 #define PT_SCENE_TYPES_H
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>
+#include <cstddef>
 #include <cstdint>
 namespace pt {
-using glm::vec4;
-using glm::uvec4;
+using glm::vec3;
 using uint = std::uint32_t;
 #endif
 
@@ -69,66 +69,105 @@ const uint kCounterNonFinitePixel = 3u; // the lowest pixel index with a dropped
 const uint kCounterLoopLimit = 4u;      // pixel passes whose loops the driver cut short (lavapipe)
 const uint kCounterCount = 5u;
 
+// Every vec3 sits at a 16-byte offset and is followed by a 4-byte scalar, and every struct
+// is a multiple of 16 bytes: then std430 (the storage buffers), std140 (the uniform blocks
+// of FrameParams and of uniform_triangles) and C++ (glm::vec3: 12 bytes, alignment 4) give
+// the same offsets, which the static_asserts below check on the C++ side.
 struct Triangle {
-  vec4 p0;     // xyz: vertex 0 (world space)
-  vec4 p1;     // xyz: vertex 1
-  vec4 p2;     // xyz: vertex 2; counter-clockwise seen from the front
-  uvec4 info;  // x: material index, y: light index or kNoLight
+  vec3 p0;        // vertex 0 (world space)
+  uint material;  // index into materials[]
+  vec3 p1;        // vertex 1
+  uint light;     // index into lights[], or kNoLight
+  vec3 p2;        // vertex 2; counter-clockwise seen from the front
+  uint pad;       // unused
 };
 
 struct Sphere {
-  vec4 center_radius;  // xyz: centre, w: radius
-  uvec4 info;          // x: material index, y: light index or kNoLight
+  vec3 center;    // centre (world space)
+  float radius;
+  uint material;  // index into materials[]
+  uint light;     // index into lights[], or kNoLight
+  uint pad0;      // unused
+  uint pad1;      // unused
 };
 
 struct Material {
-  vec4 base_color;  // rgb: albedo / F0 / glass tint
-  vec4 emission;    // rgb: emitted radiance (factor x strength), w: 1 if double-sided
-  vec4 params;      // x: metallic, y: GGX alpha (roughness^2), z: transmission, w: ior
-  uvec4 kind;       // x: kMaterial*
+  vec3 base_color;     // albedo / F0 / glass tint
+  float metallic;      // 0: diffuse, 1: conductor, between: mixed (kMaterialMixed)
+  vec3 emission;       // emitted radiance (factor x strength)
+  uint double_sided;   // 1: emits from both faces, 0: from the front face only
+  float alpha;         // GGX alpha (roughness^2)
+  float transmission;  // KHR_materials_transmission's factor
+  float ior;           // index of refraction (glass)
+  uint kind;           // kMaterial*
 };
 
 struct PointLight {
-  vec4 position;   // xyz: world position
-  vec4 intensity;  // rgb: radiant intensity, W/sr (colour x intensity)
+  vec3 position;   // world position
+  float pad0;      // unused
+  vec3 intensity;  // radiant intensity, W/sr (colour x intensity)
+  float pad1;      // unused
 };
 
 // One entry of the light table: lights are picked in proportion to their power.
 struct Light {
-  uvec4 info;  // x: kLight*, y: index into triangles[], spheres[] or point_lights[]
-  vec4 pick;   // x: probability of picking it, y: cumulative probability up to it
+  uint kind;         // kLight*
+  uint index;        // index into triangles[], spheres[] or point_lights[]
+  float pick;        // probability of picking it
+  float cumulative;  // cumulative probability up to it (1 for the last entry)
 };
 
 struct Camera {
-  vec4 origin;   // xyz: eye position
-  vec4 forward;  // xyz: unit view direction (the node's -Z)
-  vec4 right;    // xyz: unit image +x
-  vec4 up;       // xyz: unit image +y
-  vec4 extent;   // perspective: x = tan(yfov/2) * aspect, y = tan(yfov/2);
-                 // orthographic: x = xmag, y = ymag (half-extents)
-  uvec4 kind;    // x: kCamera*
+  vec3 origin;     // eye position
+  uint kind;       // kCamera*
+  vec3 forward;    // unit view direction (the node's -Z)
+  float extent_x;  // perspective: tan(yfov/2) * aspect; orthographic: xmag (half-extent)
+  vec3 right;      // unit image +x
+  float extent_y;  // perspective: tan(yfov/2); orthographic: ymag (half-extent)
+  vec3 up;         // unit image +y
+  float pad;       // unused
 };
 
 // Everything a pass needs besides the arrays: one uniform block on the GPU.
 struct FrameParams {
   Camera camera;
-  vec4 sky;        // rgb: radiance of rays that leave the scene; w: probability that
-                   // light sampling picks the sky (the light table shares the rest)
-  uvec4 image;     // x: width, y: height, z: first sample index of this pass, w: samples
-  uvec4 counts;    // x: triangles, y: spheres, z: materials, w: point lights
-  uvec4 options;   // x: seed, y: roulette mode, z: depth cap, w: first row of the dispatch
-  uvec4 lights;    // x: entries of the light table, yzw: unused
-  vec4 scale;      // x: the radius of the scene's bounding sphere (ray offsets scale with it)
+  vec3 sky;                // radiance of rays that leave the scene
+  float sky_pick;          // probability that light sampling picks the sky (the light
+                           // table shares the rest)
+  uint width;              // image size in pixels
+  uint height;
+  uint first_sample;       // sample index of this pass's first sample
+  uint sample_count;       // samples per pixel in this pass
+  uint triangle_count;     // entries of triangles[]
+  uint sphere_count;       // entries of spheres[]
+  uint material_count;     // entries of materials[]
+  uint point_light_count;  // entries of point_lights[]
+  uint seed;               // the random-number seed of the render
+  uint roulette;           // kRoulette*
+  uint depth_cap;          // bounces after which a path stops (a safety net)
+  uint first_row;          // the first image row of this dispatch (GPU)
+  uint light_count;        // entries of the light table lights[]
+  float scene_radius;      // the radius of the scene's bounding sphere (ray offsets scale with it)
+  uint pad0;               // unused
+  uint pad1;               // unused
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(Triangle) == 64);
+static_assert(sizeof(Triangle) == 48);
+static_assert(offsetof(Triangle, p1) == 16 && offsetof(Triangle, p2) == 32);
 static_assert(sizeof(Sphere) == 32);
-static_assert(sizeof(Material) == 64);
+static_assert(offsetof(Sphere, radius) == 12 && offsetof(Sphere, material) == 16);
+static_assert(sizeof(Material) == 48);
+static_assert(offsetof(Material, emission) == 16 && offsetof(Material, alpha) == 32);
 static_assert(sizeof(PointLight) == 32);
-static_assert(sizeof(Camera) == 96);
-static_assert(sizeof(Light) == 32);
-static_assert(sizeof(FrameParams) == 192);
+static_assert(offsetof(PointLight, intensity) == 16);
+static_assert(sizeof(Light) == 16);
+static_assert(sizeof(Camera) == 64);
+static_assert(offsetof(Camera, forward) == 16 && offsetof(Camera, right) == 32 && offsetof(Camera, up) == 48);
+static_assert(sizeof(FrameParams) == 144);
+static_assert(offsetof(FrameParams, sky) == 64 && offsetof(FrameParams, width) == 80);
+static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParams, seed) == 112);
+static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);
 }  // namespace pt
 #endif
 

@@ -27,7 +27,7 @@ const float kOffsetUlps = 8.0f;
 const float kOffsetSceneScale = 16.0f;
 
 float offset_height(vec3 p, vec3 n) {
-  float size = kOffsetSceneScale * params.scale.x;
+  float size = kOffsetSceneScale * params.scene_radius;
   return kOffsetUlps * (abs(n.x) * ulp_above(max(abs(p.x), size)) + abs(n.y) * ulp_above(max(abs(p.y), size)) +
                         abs(n.z) * ulp_above(max(abs(p.z), size)));
 }

@@ -9,9 +9,9 @@
 // A point uniform on the triangle: density 1 / area (Turk's square-root mapping).
 LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   Triangle tri = triangles[index];
-  vec3 p0 = vec3(tri.p0);
-  vec3 p1 = vec3(tri.p1);
-  vec3 p2 = vec3(tri.p2);
+  vec3 p0 = tri.p0;
+  vec3 p1 = tri.p1;
+  vec3 p2 = tri.p2;
   float su = sqrt(u.x);
   vec3 y = (1.0f - su) * p0 + su * (1.0f - u.y) * p1 + su * u.y * p2;
   vec3 c = cross(p1 - p0, p2 - p0);
@@ -21,10 +21,10 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   float dist2 = dot(d, d);
   float dist = sqrt(dist2);
   vec3 wi = d / dist;
-  Material m = materials[tri.info.x];
+  Material m = materials[tri.material];
   float cos_y = dot(-wi, n);
   // Le from the front face only, unless double-sided (the contract (README.md)).
-  if (m.emission.w > 0.0f) cos_y = abs(cos_y);
+  if (m.double_sided != 0u) cos_y = abs(cos_y);
   if (!(cos_y > 0.0f) || !(dist > 0.0f)) return no_light();
   float pdf = dist2 / (cos_y * area) * pick;  // area pdf 1/A turned into solid angle
   return LightSample(wi, dist, vec3(m.emission) / pdf, pdf);

@@ -59,7 +59,7 @@ class Backend {
   // the kernel specialised to `features` (kFeature* bits, common/kernel/features.glsl):
   // arrays that no feature of the set reads are not uploaded.
   virtual void set_scene(const Scene& scene, uint features) = 0;
-  // Renders params.image.w samples of every pixel into out (width * height values of
+  // Renders params.sample_count samples of every pixel into out (width * height values of
   // render_pixel(): rgb sum, squared-luminance sum).
   virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
 };

@@ -56,15 +56,17 @@ void RenderCounters::add(const PassResult& pass) {
 FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   FrameParams p{};
   p.camera = make_camera(scene, float(s.width) / float(s.height));
-  p.sky = glm::vec4(s.sky, 0.0f);
-  p.image = glm::uvec4(uint(s.width), uint(s.height), 0u, 0u);
-  p.counts = glm::uvec4(uint(scene.triangles.size()), uint(scene.spheres.size()), uint(scene.materials.size()),
-                        uint(scene.point_lights.size()));
-  p.options = glm::uvec4(s.seed, s.roulette, s.depth_cap, 0u);
-  p.lights = glm::uvec4(uint(scene.lights.size()), 0u, 0u, 0u);
-  p.sky.w = sky_pick_probability(scene, s.sky);
+  p.sky = s.sky;
+  p.width = uint(s.width), p.height = uint(s.height);
+  p.triangle_count = uint(scene.triangles.size());
+  p.sphere_count = uint(scene.spheres.size());
+  p.material_count = uint(scene.materials.size());
+  p.point_light_count = uint(scene.point_lights.size());
+  p.seed = s.seed, p.roulette = s.roulette, p.depth_cap = s.depth_cap;
+  p.light_count = uint(scene.lights.size());
+  p.sky_pick = sky_pick_probability(scene, s.sky);
   Bounds b = scene.bounds();
-  p.scale = glm::vec4(b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f), 0.0f, 0.0f, 0.0f);
+  p.scene_radius = b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f);
   return p;
 }
 
@@ -87,8 +89,8 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
   }
   for (std::uint64_t index = result.passes; done < s.spp; index++) {
     std::uint64_t n = std::min(pass_samples(index), s.spp - done);
-    params.image.z = uint(done);
-    params.image.w = uint(n);
+    params.first_sample = uint(done);
+    params.sample_count = uint(n);
     PassResult pass_result;
     try {
       pass_result = backend.run_pass(params, pass);

@@ -100,7 +100,7 @@ Scene make_point_floor(const PointFloorScene& a) {
   uint floor = s.add_material(make_diffuse(glm::vec3(a.floor.albedo)));
   float h = a.floor.floor_half;
   add_quad(s, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, floor);
-  s.point_lights.push_back(PointLight{glm::vec4(0.0f, a.floor.light_height, 0.0f, 1.0f), glm::vec4(a.intensity, 0.0f)});
+  s.point_lights.push_back(PointLight{glm::vec3(0.0f, a.floor.light_height, 0.0f), 0.0f, a.intensity, 0.0f});
   s.camera = orthographic_down({0.0f, a.floor.camera_height, 0.0f}, a.floor.view_half);
   build_light_table(s);
   return s;
@@ -109,7 +109,7 @@ Scene make_point_floor(const PointFloorScene& a) {
 Scene make_point_in_sphere(const PointInSphereScene& a) {
   Scene s;
   s.add_sphere(glm::vec3(0.0f), a.radius, s.add_material(make_diffuse(glm::vec3(a.albedo))));
-  s.point_lights.push_back(PointLight{glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(glm::vec3(a.intensity), 0.0f)});
+  s.point_lights.push_back(PointLight{glm::vec3(0.0f), 0.0f, glm::vec3(a.intensity), 0.0f});
   CameraDesc cam;
   cam.yfov = 1.2f;
   s.camera = cam;  // at the centre, looking down -Z

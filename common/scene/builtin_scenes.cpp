@@ -72,7 +72,7 @@ Scene every_feature() {
   s.add_sphere({-0.5f, -0.75f, 0.5f}, 0.25f, s.add_material(make_glass(glm::vec3(1.0f), 1.5f)));
   s.add_sphere({0.5f, 0.1f, -0.5f}, 0.2f, s.add_material(make_metal(glm::vec3(0.9f), 0.0f)));
   s.add_sphere({0.0f, 0.6f, 0.3f}, 0.05f, s.add_material(make_diffuse(glm::vec3(0.0f), {20.0f, 20.0f, 30.0f})));
-  s.point_lights.push_back(PointLight{glm::vec4(0.6f, 0.8f, 0.6f, 1.0f), glm::vec4(0.3f, 0.3f, 0.2f, 0.0f)});
+  s.point_lights.push_back(PointLight{glm::vec3(0.6f, 0.8f, 0.6f), 0.0f, glm::vec3(0.3f, 0.3f, 0.2f), 0.0f});
   return s;
 }
 

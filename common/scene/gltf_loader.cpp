@@ -1,7 +1,7 @@
 // The glTF 2.0 loader of the contract (README.md) "Scenes": every triangle primitive of the default
-// scene with node transforms applied, metallic-roughness factors as materials,
+// scene with node transforms applied, metallic-roughness factors as materials (gltf_materials.cpp),
 // KHR_lights_punctual point lights and the first camera. Checks of the file itself live
-// in gltf_validate.cpp; what is not modelled is named once on stderr.
+// behind gltf_validate.h; what is not modelled is named once on stderr.
 #include <cmath>
 #include <map>
 #include <string>
@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "common/base/error.h"
+#include "common/scene/gltf_materials.h"
 #include "common/scene/gltf_validate.h"
 #include "common/scene/scene_loading.h"
 
@@ -69,18 +70,6 @@ glm::dmat4 local_transform(const tinygltf::Node& node) {
   }
   if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
   return m;
-}
-
-// A number from a material extension, e.g. KHR_materials_ior.ior, or its default.
-double extension_number(const tinygltf::ExtensionMap& extensions, const std::string& name,
-                        const std::string& key, double fallback, const std::string& where,
-                        const std::string& file) {
-  auto it = extensions.find(name);
-  if (it == extensions.end() || !it->second.Has(key)) return fallback;
-  const tinygltf::Value& value = it->second.Get(key);
-  if (!value.IsNumber())
-    fail(file, where + ".extensions." + name + "." + key + " is not a number: " + gltf::kReexport);
-  return value.GetNumberAsDouble();
 }
 
 void warn_unmodelled(const tinygltf::Model& model, const std::string& file) {
@@ -181,7 +170,7 @@ class SceneBuilder {
     glm::vec3 power = intensity * color;
     if (!std::isfinite(power.x + power.y + power.z))
       fail(file_, where + ": intensity x color overflows: " + gltf::kReexport);
-    scene_.point_lights.push_back(PointLight{glm::vec4(position, 1.0f), glm::vec4(power, 0.0f)});
+    scene_.point_lights.push_back(PointLight{position, 0.0f, power, 0.0f});
   }
 
   void add_mesh(int mesh_index, const glm::dmat4& world) {
@@ -240,44 +229,8 @@ class SceneBuilder {
     if (found != materials_.end()) return found->second;
     Material m = gltf_index == -1
                      ? make_gltf_material(glm::vec3(1.0f), 1.0f, 1.0f, 0.0f, 1.5f, glm::vec3(0.0f), false)
-                     : convert_material(gltf_index);
+                     : gltf::convert_material(model_, gltf_index, file_);
     return materials_[gltf_index] = scene_.add_material(m);
-  }
-
-  Material convert_material(int index) {
-    const tinygltf::Material& m = model_.materials[index];
-    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    std::string where = "materials[" + std::to_string(index) + "]";
-    std::string factors = where + ".pbrMetallicRoughness.";
-    if (pbr.baseColorFactor.size() != 4)
-      fail(file_, factors + "baseColorFactor needs 4 numbers: " + gltf::kReexport);
-    glm::vec3 base, emission;
-    double strength = extension_number(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength",
-                                       1.0, where, file_);
-    checked_float(file_, strength, where + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
-                  0.0);
-    for (int k = 0; k < 3; ++k) {
-      std::string i = "[" + std::to_string(k) + "]";
-      base[k] = checked_float(file_, pbr.baseColorFactor[k], factors + "baseColorFactor" + i, 0.0, 1.0);
-      checked_float(file_, m.emissiveFactor[k], where + ".emissiveFactor" + i, 0.0, 1.0);
-      emission[k] =
-          checked_float(file_, m.emissiveFactor[k] * strength, where + ".emissiveFactor" + i + " x strength");
-    }
-    float metallic = checked_float(file_, pbr.metallicFactor, factors + "metallicFactor", 0.0, 1.0);
-    float roughness = checked_float(file_, pbr.roughnessFactor, factors + "roughnessFactor", 0.0, 1.0);
-    double transmission =
-        extension_number(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, where, file_);
-    double ior = extension_number(m.extensions, "KHR_materials_ior", "ior", 1.5, where, file_);
-    if (ior == 0.0) {
-      warn_once(file_ + ": " + where + " has KHR_materials_ior ior 0, which is not modelled; using 1.5");
-      ior = 1.5;
-    }
-    float t = checked_float(file_, transmission,
-                            where + ".extensions.KHR_materials_transmission.transmissionFactor", 0.0, 1.0);
-    float eta = checked_float(file_, ior, where + ".extensions.KHR_materials_ior.ior", 1.0);
-    if (m.alphaMode != "OPAQUE")
-      warn_once(file_ + ": scene uses alphaMode " + m.alphaMode + "; surfaces are drawn opaque");
-    return make_gltf_material(base, metallic, roughness, t, eta, emission, m.doubleSided);
   }
 
   const tinygltf::Model& model_;

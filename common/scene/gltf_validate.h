@@ -1,7 +1,7 @@
-// Checks of a glTF 2.0 file that tinygltf leaves to its user, for the loader of
-// the contract (README.md) "Scenes" (gltf_loader.cpp): the file and its JSON before tinygltf reads
-// them, references and the node tree after, and every accessor a triangle reads.
-// Not part of the article: the machinery that turns a malformed file into one line.
+// Checks of a glTF 2.0 file that tinygltf leaves to its user, for the loader of the contract
+// (README.md) "Scenes" (gltf_loader.cpp): the file and its JSON before tinygltf reads them
+// (gltf_precheck.cpp), references and the node tree after (gltf_validate.cpp), and every accessor
+// a triangle reads (gltf_accessors.cpp). Not part of the article: malformed files made one line.
 #pragma once
 
 #include <cfloat>

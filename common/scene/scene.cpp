@@ -12,11 +12,10 @@ Bounds Scene::bounds() const {
   if (region) return *region;
   Bounds b;
   for (const Triangle& t : triangles) {
-    b.extend(glm::vec3(t.p0)), b.extend(glm::vec3(t.p1)), b.extend(glm::vec3(t.p2));
+    b.extend(t.p0), b.extend(t.p1), b.extend(t.p2);
   }
   for (const Sphere& s : spheres) {
-    glm::vec3 c(s.center_radius);
-    b.extend(c - s.center_radius.w), b.extend(c + s.center_radius.w);
+    b.extend(s.center - s.radius), b.extend(s.center + s.radius);
   }
   return b;
 }
@@ -27,12 +26,11 @@ uint Scene::add_material(const Material& m) {
 }
 
 void Scene::add_triangle(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, uint material) {
-  triangles.push_back(Triangle{glm::vec4(p0, 0.0f), glm::vec4(p1, 0.0f), glm::vec4(p2, 0.0f),
-                               glm::uvec4(material, kNoLight, 0u, 0u)});
+  triangles.push_back(Triangle{p0, material, p1, kNoLight, p2, 0u});
 }
 
 void Scene::add_sphere(glm::vec3 center, float radius, uint material) {
-  spheres.push_back(Sphere{glm::vec4(center, radius), glm::uvec4(material, kNoLight, 0u, 0u)});
+  spheres.push_back(Sphere{center, radius, material, kNoLight, 0u, 0u});
 }
 
 // A quad p0 p1 p2 p3 (counter-clockwise seen from its front) as two triangles.
@@ -84,28 +82,29 @@ CameraDesc orthographic_front(float z, float half) {
 namespace {
 Material base_material(glm::vec3 color, uint kind) {
   Material m{};
-  m.base_color = glm::vec4(color, 1.0f);
-  m.params = glm::vec4(0.0f, 1.0f, 0.0f, 1.5f);
-  m.kind = glm::uvec4(kind, 0u, 0u, 0u);
+  m.base_color = color;
+  m.metallic = 0.0f, m.alpha = 1.0f, m.transmission = 0.0f, m.ior = 1.5f;
+  m.kind = kind;
   return m;
 }
 }  // namespace
 
 Material make_diffuse(glm::vec3 albedo, glm::vec3 emission, bool double_sided) {
   Material m = base_material(albedo, kMaterialDiffuse);
-  m.emission = glm::vec4(emission, double_sided ? 1.0f : 0.0f);
+  m.emission = emission;
+  m.double_sided = double_sided ? 1u : 0u;
   return m;
 }
 
 Material make_metal(glm::vec3 f0, float roughness) {
   Material m = base_material(f0, roughness > 0.0f ? kMaterialConductor : kMaterialMirror);
-  m.params = glm::vec4(1.0f, roughness * roughness, 0.0f, 1.5f);
+  m.metallic = 1.0f, m.alpha = roughness * roughness, m.transmission = 0.0f, m.ior = 1.5f;
   return m;
 }
 
 Material make_glass(glm::vec3 tint, float ior) {
   Material m = base_material(tint, kMaterialGlass);
-  m.params = glm::vec4(0.0f, 0.0f, 1.0f, ior);
+  m.metallic = 0.0f, m.alpha = 0.0f, m.transmission = 1.0f, m.ior = ior;
   return m;
 }
 
@@ -120,10 +119,11 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
     m = make_diffuse(base);
   } else {
     m = base_material(base, kMaterialMixed);
-    m.params = glm::vec4(metallic, roughness * roughness, 0.0f, ior);
+    m.metallic = metallic, m.alpha = roughness * roughness, m.transmission = 0.0f, m.ior = ior;
   }
-  m.params.z = transmission;
-  m.emission = glm::vec4(emission, double_sided ? 1.0f : 0.0f);
+  m.transmission = transmission;
+  m.emission = emission;
+  m.double_sided = double_sided ? 1u : 0u;
   return m;
 }
 
@@ -136,26 +136,26 @@ void build_light_table(Scene& scene) {
   std::vector<double> power;
   for (std::size_t i = 0; i < scene.triangles.size(); i++) {
     Triangle& t = scene.triangles[i];
-    const Material& m = scene.materials[t.info.x];
+    const Material& m = scene.materials[t.material];
     if (!is_emissive(m)) continue;
-    double area = 0.5 * glm::length(glm::cross(glm::vec3(t.p1 - t.p0), glm::vec3(t.p2 - t.p0)));
-    double sides = m.emission.w > 0.0f ? 2.0 : 1.0;
-    t.info.y = uint(scene.lights.size());
-    scene.lights.push_back(Light{glm::uvec4(kLightTriangle, uint(i), 0u, 0u), glm::vec4(0.0f)});
-    power.push_back(M_PI * area * sides * luminance(glm::vec3(m.emission)));
+    double area = 0.5 * glm::length(glm::cross(t.p1 - t.p0, t.p2 - t.p0));
+    double sides = m.double_sided != 0u ? 2.0 : 1.0;
+    t.light = uint(scene.lights.size());
+    scene.lights.push_back(Light{kLightTriangle, uint(i), 0.0f, 0.0f});
+    power.push_back(M_PI * area * sides * luminance(m.emission));
   }
   for (std::size_t i = 0; i < scene.spheres.size(); i++) {
     Sphere& s = scene.spheres[i];
-    const Material& m = scene.materials[s.info.x];
+    const Material& m = scene.materials[s.material];
     if (!is_emissive(m)) continue;
-    double r = s.center_radius.w;
-    s.info.y = uint(scene.lights.size());
-    scene.lights.push_back(Light{glm::uvec4(kLightSphere, uint(i), 0u, 0u), glm::vec4(0.0f)});
-    power.push_back(M_PI * 4.0 * M_PI * r * r * luminance(glm::vec3(m.emission)));
+    double r = s.radius;
+    s.light = uint(scene.lights.size());
+    scene.lights.push_back(Light{kLightSphere, uint(i), 0.0f, 0.0f});
+    power.push_back(M_PI * 4.0 * M_PI * r * r * luminance(m.emission));
   }
   for (std::size_t i = 0; i < scene.point_lights.size(); i++) {
-    scene.lights.push_back(Light{glm::uvec4(kLightPoint, uint(i), 0u, 0u), glm::vec4(0.0f)});
-    power.push_back(4.0 * M_PI * luminance(glm::vec3(scene.point_lights[i].intensity)));
+    scene.lights.push_back(Light{kLightPoint, uint(i), 0.0f, 0.0f});
+    power.push_back(4.0 * M_PI * luminance(scene.point_lights[i].intensity));
   }
   double total = 0.0;
   for (double p : power) total += p;
@@ -166,11 +166,11 @@ void build_light_table(Scene& scene) {
     double p = total > 0.0 ? power[i] / total : 1.0 / double(power.size());
     p = std::max(p, 1e-6);
     cumulative += p;
-    scene.lights[i].pick = glm::vec4(float(p), float(cumulative), 0.0f, 0.0f);
+    scene.lights[i].pick = float(p), scene.lights[i].cumulative = float(cumulative);
   }
   // Normalise so that the last cumulative value is exactly 1.
-  for (Light& l : scene.lights) l.pick.x /= float(cumulative), l.pick.y /= float(cumulative);
-  if (!scene.lights.empty()) scene.lights.back().pick.y = 1.0f;
+  for (Light& l : scene.lights) l.pick /= float(cumulative), l.cumulative /= float(cumulative);
+  if (!scene.lights.empty()) scene.lights.back().cumulative = 1.0f;
 }
 
 float sky_pick_probability(const Scene& scene, glm::vec3 sky) {
@@ -190,22 +190,22 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
   if (!scene.triangles.empty()) mask |= kFeatureTriangles;
   if (!scene.spheres.empty()) mask |= kFeatureSpheres;
   auto add_material = [&](const Material& m) {
-    switch (m.kind.x) {
+    switch (m.kind) {
       case kMaterialDiffuse: mask |= kFeatureDiffuse; break;
       case kMaterialMirror: mask |= kFeatureMirror; break;
       case kMaterialConductor:  // below kGgxMirrorAlpha the kernels scatter it as a mirror
-        mask |= kFeatureConductor | (m.params.y < kGgxMirrorAlpha ? kFeatureMirror : 0u);
+        mask |= kFeatureConductor | (m.alpha < kGgxMirrorAlpha ? kFeatureMirror : 0u);
         break;
       case kMaterialGlass: mask |= kFeatureGlass; break;
       default:  // mixed: the diffuse lobe, and the conductor's (a mirror when alpha is 0)
-        mask |= kFeatureMixed | kFeatureDiffuse | (m.params.y >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror);
+        mask |= kFeatureMixed | kFeatureDiffuse | (m.alpha >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror);
     }
   };
-  for (const Triangle& t : scene.triangles) add_material(scene.materials[t.info.x]);
-  for (const Sphere& s : scene.spheres) add_material(scene.materials[s.info.x]);
+  for (const Triangle& t : scene.triangles) add_material(scene.materials[t.material]);
+  for (const Sphere& s : scene.spheres) add_material(scene.materials[s.material]);
   for (const Light& l : scene.lights) {
-    if (l.info.x == kLightTriangle) mask |= kFeatureTriangleLights;
-    if (l.info.x == kLightSphere) mask |= kFeatureSphereLights;
+    if (l.kind == kLightTriangle) mask |= kFeatureTriangleLights;
+    if (l.kind == kLightSphere) mask |= kFeatureSphereLights;
   }
   if (!scene.point_lights.empty()) mask |= kFeaturePointLights;
   if (sky.x > 0.0f || sky.y > 0.0f || sky.z > 0.0f) mask |= kFeatureSky;
@@ -263,17 +263,17 @@ Camera make_camera(const Scene& scene, float aspect) {
   glm::vec3 up = glm::cross(right, forward);
 
   Camera c{};
-  c.origin = glm::vec4(origin, 1.0f);
-  c.forward = glm::vec4(forward, 0.0f);
-  c.right = glm::vec4(right, 0.0f);
-  c.up = glm::vec4(up, 0.0f);
+  c.origin = origin;
+  c.forward = forward;
+  c.right = right;
+  c.up = up;
   if (desc.kind == kCameraOrthographic) {
-    c.extent = glm::vec4(desc.xmag, desc.ymag, 0.0f, 0.0f);
+    c.extent_x = desc.xmag, c.extent_y = desc.ymag;
   } else {
     float t = std::tan(0.5f * desc.yfov);
-    c.extent = glm::vec4(t * aspect, t, 0.0f, 0.0f);
+    c.extent_x = t * aspect, c.extent_y = t;
   }
-  c.kind = glm::uvec4(desc.kind, 0u, 0u, 0u);
+  c.kind = desc.kind;
   return c;
 }
 

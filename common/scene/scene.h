@@ -29,9 +29,9 @@ struct Bounds {
 
 struct Scene {
   std::string name;                      // file path or builtin:NAME
-  std::vector<Triangle> triangles;       // world space, material in info.x
-  std::vector<Sphere> spheres;           // world space, material in info.x
-  std::vector<Material> materials;       // indexed by Triangle/Sphere info.x
+  std::vector<Triangle> triangles;       // world space
+  std::vector<Sphere> spheres;           // world space
+  std::vector<Material> materials;       // indexed by Triangle/Sphere .material
   std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
   std::vector<Light> lights;             // the light table: build_light_table()
   double light_power = 0.0;              // the table's total power (luminance), same place

@@ -42,25 +42,25 @@ TEST_CASE("intersect: the CPU's block test finds the same hits as the plain loop
       if (i % 7 == 3) c = a + 1e-4f * (b - a);  // a sliver
       if (i % 11 == 5 && i > 0) {               // shares an edge with the last triangle
         const pt::Triangle& last = s.triangles.back();
-        a = glm::vec3(last.p1), b = glm::vec3(last.p0);
+        a = last.p1, b = last.p0;
       }
       if (i % 13 == 9) {  // the same as an earlier triangle: hits at equal distances
         const pt::Triangle& earlier = s.triangles[std::size_t(i) / 2];
-        a = glm::vec3(earlier.p0), b = glm::vec3(earlier.p1), c = glm::vec3(earlier.p2);
+        a = earlier.p0, b = earlier.p1, c = earlier.p2;
       }
       s.add_triangle(a, b, c, m);
     }
     pt::TriangleSoa soa(s.triangles);
     kernel::triangles = s.triangles.data();
     kernel::spheres = s.spheres.data();
-    kernel::params.counts = glm::uvec4(uint(s.triangles.size()), 0u, 0u, 0u);
+    kernel::params.triangle_count = uint(s.triangles.size());
     for (int r = 0; r < 2000; r++) {
       // From a random point towards a random point of a random triangle (or its edge).
       const pt::Triangle& target = s.triangles[std::size_t(rng() % s.triangles.size())];
       float b1 = 0.5f * (unit(rng) + 1.0f), b2 = 0.5f * (unit(rng) + 1.0f);
       if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
       if (r % 5 == 0) b2 = 1.0f - b1;  // on an edge
-      glm::vec3 aim = (1.0f - b1 - b2) * glm::vec3(target.p0) + b1 * glm::vec3(target.p1) + b2 * glm::vec3(target.p2);
+      glm::vec3 aim = (1.0f - b1 - b2) * target.p0 + b1 * target.p1 + b2 * target.p2;
       glm::vec3 origin = offset + 3.0f * scale * glm::vec3(unit(rng), unit(rng), unit(rng));
       if (glm::length(aim - origin) == 0.0f) continue;
       kernel::Ray ray(origin, glm::normalize(aim - origin));

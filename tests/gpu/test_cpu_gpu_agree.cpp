@@ -63,7 +63,7 @@ TEST_CASE("stage4: CPU and GPU images of the same seed agree to rounding", "[sta
   check_agreement(stage4::kernels(), {"cornell", "furnace", "glass_slab", "point_floor"}, s);
 }
 
-// The GPU reads the triangles from a uniform copy when they fit (gpu_backend.cpp, 1023 on
+// The GPU reads the triangles from a uniform copy when they fit (gpu_backend.cpp, 1364 on
 // lavapipe) and from the storage buffer otherwise: the second path too must give the CPU's
 // image. The Cornell box with 2000 more triangles out of sight, far below its floor.
 TEST_CASE("stage1, stage2: CPU and GPU agree when the triangles do not fit the uniform copy", "[stage2][gpu]") {

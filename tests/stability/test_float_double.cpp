@@ -101,7 +101,7 @@ using namespace pt::test;
     ns::lights = scene.lights.data();                                                          \
     ns::counters = counters;                                                                   \
     ns::params = make_frame_params(scene, s);                                                  \
-    ns::params.image.w = uint(s.spp);                                                          \
+    ns::params.sample_count = uint(s.spp);                                                     \
     std::vector<double> image;                                                                 \
     for (int y = 0; y < s.height; y++)                                                         \
       for (int x = 0; x < s.width; x++) {                                                      \

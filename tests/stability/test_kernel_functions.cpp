@@ -56,14 +56,14 @@ struct SpawnStats {
 // Shoots `rays` rays at random points of the triangle, and from each hit spawns a ray in a
 // random direction (either side); counts the spawned rays that hit the triangle again.
 void spawn_from(const pt::Triangle& tri, int rays, std::mt19937& rng, SpawnStats& stats) {
-  glm::vec3 p0(tri.p0), p1(tri.p1), p2(tri.p2);
+  glm::vec3 p0 = tri.p0, p1 = tri.p1, p2 = tri.p2;
   glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
   if (!(glm::length(c) > 0.0f) || !std::isfinite(glm::length(c))) return;  // degenerate in float
   kernel::triangles = &tri;
-  kernel::params.counts = glm::uvec4(1u, 0u, 0u, 0u);
+  kernel::params.triangle_count = 1u;
   pt::Bounds b;
   b.extend(p0), b.extend(p1), b.extend(p2);
-  kernel::params.scale = glm::vec4(std::max(0.5f * glm::length(b.hi - b.lo), 1e-30f), 0.0f, 0.0f, 0.0f);
+  kernel::params.scene_radius = std::max(0.5f * glm::length(b.hi - b.lo), 1e-30f);
   glm::vec3 n = glm::normalize(c);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   stats.triangles++;
@@ -107,9 +107,9 @@ TEST_CASE("stability: rays spawned from 1000 random triangles with coordinates 1
     glm::vec3 center = std::pow(10.0f, -8.0f + 16.0f * u(rng)) * random_direction(rng);
     float size = glm::length(center) * std::pow(10.0f, -6.0f + 6.0f * u(rng));
     pt::Triangle t{};
-    t.p0 = glm::vec4(center + size * random_direction(rng), 1.0f);
-    t.p1 = glm::vec4(center + size * random_direction(rng), 1.0f);
-    t.p2 = glm::vec4(center + size * random_direction(rng), 1.0f);
+    t.p0 = center + size * random_direction(rng);
+    t.p1 = center + size * random_direction(rng);
+    t.p2 = center + size * random_direction(rng);
     spawn_from(t, 1000, rng, stats);
   }
   INFO(stats.triangles << " triangles, " << stats.rays << " rays, " << stats.rehits << " re-hits");
@@ -128,9 +128,9 @@ TEST_CASE("stability: rays spawned from slivers with independent coordinates 1e-
   SpawnStats stats;
   for (int i = 0; i < 1000; i++) {
     pt::Triangle t{};
-    t.p0 = glm::vec4(random_coordinate(rng), random_coordinate(rng), random_coordinate(rng), 1.0f);
-    t.p1 = glm::vec4(random_coordinate(rng), random_coordinate(rng), random_coordinate(rng), 1.0f);
-    t.p2 = glm::vec4(random_coordinate(rng), random_coordinate(rng), random_coordinate(rng), 1.0f);
+    t.p0 = glm::vec3(random_coordinate(rng), random_coordinate(rng), random_coordinate(rng));
+    t.p1 = glm::vec3(random_coordinate(rng), random_coordinate(rng), random_coordinate(rng));
+    t.p2 = glm::vec3(random_coordinate(rng), random_coordinate(rng), random_coordinate(rng));
     spawn_from(t, 1000, rng, stats);
   }
   INFO(stats.triangles << " triangles, " << stats.rays << " rays, " << stats.rehits << " re-hits");
@@ -144,8 +144,8 @@ TEST_CASE("stability: GGX from alpha 0 to 1 at incidence up to 89.99 degrees: f 
   kernel::rng_seed(1u, 2u, 3u);
   for (float alpha : {0.0f, 1e-9f, 0.5f * pt::kGgxMirrorAlpha, pt::kGgxMirrorAlpha, 1e-6f, 1e-4f, 1e-3f, 0.05f,
                       0.5f, 1.0f}) {
-    m.kind.x = kMaterialConductor;
-    m.params.y = alpha;
+    m.kind = kMaterialConductor;
+    m.alpha = alpha;
     uint lobe = kernel::choose_lobe(m, 0.5f);
     INFO("alpha " << alpha);
     if (alpha < pt::kGgxMirrorAlpha) {
@@ -183,7 +183,7 @@ TEST_CASE("stability: glass at grazing incidence and under total internal reflec
           "under TIR, no NaN", "[stability][glass]") {
   pt::Material glass = pt::make_glass(glm::vec3(1.0f), 1.5f);
   for (float ior : {1.0f, 1.0001f, 1.5f, 3.0f}) {
-    glass.params.w = ior;
+    glass.ior = ior;
     for (double deg : {0.0, 30.0, 60.0, 89.0, 89.9, 89.99, 90.0}) {
       glm::vec3 wo = incident(deg);
       for (bool entering : {true, false}) {

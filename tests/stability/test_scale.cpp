@@ -19,11 +19,9 @@ namespace {
 // Scales every length of the scene by s about the origin, then moves it by offset.
 // Radiance does not change with scale; a point light's intensity scales with s^2.
 void transform_scene(Scene& scene, float s, glm::vec3 offset) {
-  auto move = [&](glm::vec4 p) { return glm::vec4(glm::vec3(p) * s + offset, p.w); };
+  auto move = [&](glm::vec3 p) { return p * s + offset; };
   for (Triangle& t : scene.triangles) t.p0 = move(t.p0), t.p1 = move(t.p1), t.p2 = move(t.p2);
-  for (Sphere& sp : scene.spheres) {
-    sp.center_radius = glm::vec4(glm::vec3(sp.center_radius) * s + offset, sp.center_radius.w * s);
-  }
+  for (Sphere& sp : scene.spheres) sp.center = move(sp.center), sp.radius *= s;
   for (PointLight& l : scene.point_lights) l.position = move(l.position), l.intensity *= s * s;
   CameraDesc& cam = *scene.camera;
   cam.to_world[3] = glm::vec4(glm::vec3(cam.to_world[3]) * s + offset, 1.0f);

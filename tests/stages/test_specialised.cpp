@@ -45,7 +45,7 @@ Scene load_case(const Case& c) {
   uint rough = scene.add_material(make_gltf_material({0.9f, 0.8f, 0.6f}, 0.5f, 0.4f, 0.0f, 1.5f, {}, false));
   uint smooth = scene.add_material(make_gltf_material({0.8f, 0.8f, 0.8f}, 0.3f, 0.0f, 0.0f, 1.5f, {}, false));
   std::size_t n = scene.triangles.size();
-  for (std::size_t i = n - 24; i < n; i++) scene.triangles[i].info.x = i < n - 12 ? rough : smooth;
+  for (std::size_t i = n - 24; i < n; i++) scene.triangles[i].material = i < n - 12 ? rough : smooth;
   return scene;
 }
 

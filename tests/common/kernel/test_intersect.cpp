@@ -35,7 +35,8 @@ pt::Scene octahedron(glm::vec3 center, float r) {
 void bind(const pt::Scene& s) {
   kernel::triangles = s.triangles.data();
   kernel::spheres = s.spheres.data();
-  kernel::params.counts = glm::uvec4(uint(s.triangles.size()), uint(s.spheres.size()), 0u, 0u);
+  kernel::params.triangle_count = uint(s.triangles.size());
+  kernel::params.sphere_count = uint(s.spheres.size());
 }
 
 }  // namespace
@@ -54,7 +55,7 @@ TEST_CASE("intersect: rays aimed at shared edges and vertices of a closed mesh n
     // A target on an edge (or at a vertex, every fourth ray).
     const pt::Triangle& t = s.triangles[i % s.triangles.size()];
     float a = (i % 4 == 0) ? 0.0f : u(rng);
-    glm::vec3 target = glm::mix(glm::vec3(t.p0), glm::vec3(t.p1), a);
+    glm::vec3 target = glm::mix(t.p0, t.p1, a);
     // A ray through the target towards a point inside enters the mesh exactly at the edge
     // or vertex: from outside it must hit, and from inside it must not escape.
     glm::vec3 inner = center + 0.5f * glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);

@@ -31,10 +31,13 @@ void bind(const pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
   kernel::materials = s.materials.data();
   kernel::point_lights = s.point_lights.data();
   kernel::lights = s.lights.data();
-  kernel::params.counts = glm::uvec4(uint(s.triangles.size()), uint(s.spheres.size()), uint(s.materials.size()),
-                                     uint(s.point_lights.size()));
-  kernel::params.lights = glm::uvec4(uint(s.lights.size()), 0u, 0u, 0u);
-  kernel::params.sky = glm::vec4(sky, pt::sky_pick_probability(s, sky));
+  kernel::params.triangle_count = uint(s.triangles.size());
+  kernel::params.sphere_count = uint(s.spheres.size());
+  kernel::params.material_count = uint(s.materials.size());
+  kernel::params.point_light_count = uint(s.point_lights.size());
+  kernel::params.light_count = uint(s.lights.size());
+  kernel::params.sky = sky;
+  kernel::params.sky_pick = pt::sky_pick_probability(s, sky);
 }
 
 // Solid angle of a triangle seen from the origin (Van Oosterom and Strackee 1983).
@@ -116,15 +119,15 @@ TEST_CASE("light sampling: lights are picked in proportion to their power", "[st
   uint bright = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(3.0f), true));
   s.add_triangle({0, 1, 0}, {1, 1, 0}, {0, 1, 1}, dim);     // area 0.5, one side
   s.add_triangle({0, 2, 0}, {2, 2, 0}, {0, 2, 1}, bright);  // area 1, both sides, 3x brighter
-  s.point_lights.push_back(pt::PointLight{glm::vec4(0, 3, 0, 1), glm::vec4(1, 1, 1, 0)});
+  s.point_lights.push_back(pt::PointLight{glm::vec3(0, 3, 0), 0.0f, glm::vec3(1, 1, 1), 0.0f});
   pt::build_light_table(s);
   REQUIRE(s.lights.size() == 3);
   // Powers: pi 0.5 1, pi 1 2 3, 4 pi 1 -> 0.5 : 6 : 4.
-  CHECK(s.lights[0].pick.x == Approx(0.5 / 10.5).epsilon(1e-5));
-  CHECK(s.lights[1].pick.x == Approx(6.0 / 10.5).epsilon(1e-5));
-  CHECK(s.lights[2].pick.x == Approx(4.0 / 10.5).epsilon(1e-5));
-  CHECK(s.lights[2].pick.y == 1.0f);
-  CHECK(s.triangles[0].info.y == 0u);
+  CHECK(s.lights[0].pick == Approx(0.5 / 10.5).epsilon(1e-5));
+  CHECK(s.lights[1].pick == Approx(6.0 / 10.5).epsilon(1e-5));
+  CHECK(s.lights[2].pick == Approx(4.0 / 10.5).epsilon(1e-5));
+  CHECK(s.lights[2].cumulative == 1.0f);
+  CHECK(s.triangles[0].light == 0u);
   bind(s);
   CHECK(kernel::pick_light(0.0f) == 0u);
   CHECK(kernel::pick_light(0.05f) == 1u);

@@ -25,7 +25,7 @@ TEST_CASE("sphere precision: smallpt's floor, a sphere of radius 1e5, is hit whe
   pt::Scene s;
   s.add_sphere({50.0f, 1e5f, 81.6f}, 1e5f, s.add_material(pt::make_diffuse(glm::vec3(0.75f))));  // floor at y = 0
   kernel::spheres = s.spheres.data();
-  kernel::params.counts = glm::uvec4(0u, 1u, 0u, 0u);
+  kernel::params.sphere_count = 1u;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   int misses = 0, wrong = 0, self_hits = 0;

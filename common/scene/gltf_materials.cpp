@@ -1,0 +1,64 @@
+// glTF materials as the contract's (see gltf_materials.h): the factors and the extension
+// numbers read, checked against their glTF ranges, and made a pt::Material by
+// make_gltf_material (scene.cpp).
+#include "common/scene/gltf_materials.h"
+
+#include "common/base/error.h"
+#include "common/scene/gltf_validate.h"
+#include "common/scene/scene.h"
+
+namespace pt::gltf {
+
+namespace {
+
+// A number from a material extension, e.g. KHR_materials_ior.ior, or its default.
+double extension_number(const tinygltf::ExtensionMap& extensions, const std::string& name,
+                        const std::string& key, double fallback, const std::string& where,
+                        const std::string& file) {
+  auto it = extensions.find(name);
+  if (it == extensions.end() || !it->second.Has(key)) return fallback;
+  const tinygltf::Value& value = it->second.Get(key);
+  if (!value.IsNumber())
+    fail(file, where + ".extensions." + name + "." + key + " is not a number: " + gltf::kReexport);
+  return value.GetNumberAsDouble();
+}
+
+}  // namespace
+
+Material convert_material(const tinygltf::Model& model, int index, const std::string& file) {
+  const tinygltf::Material& m = model.materials[index];
+  const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+  std::string where = "materials[" + std::to_string(index) + "]";
+  std::string factors = where + ".pbrMetallicRoughness.";
+  if (pbr.baseColorFactor.size() != 4)
+    fail(file, factors + "baseColorFactor needs 4 numbers: " + gltf::kReexport);
+  glm::vec3 base, emission;
+  double strength = extension_number(m.extensions, "KHR_materials_emissive_strength", "emissiveStrength",
+                                     1.0, where, file);
+  checked_float(file, strength, where + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+                0.0);
+  for (int k = 0; k < 3; ++k) {
+    std::string i = "[" + std::to_string(k) + "]";
+    base[k] = checked_float(file, pbr.baseColorFactor[k], factors + "baseColorFactor" + i, 0.0, 1.0);
+    checked_float(file, m.emissiveFactor[k], where + ".emissiveFactor" + i, 0.0, 1.0);
+    emission[k] =
+        checked_float(file, m.emissiveFactor[k] * strength, where + ".emissiveFactor" + i + " x strength");
+  }
+  float metallic = checked_float(file, pbr.metallicFactor, factors + "metallicFactor", 0.0, 1.0);
+  float roughness = checked_float(file, pbr.roughnessFactor, factors + "roughnessFactor", 0.0, 1.0);
+  double transmission =
+      extension_number(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, where, file);
+  double ior = extension_number(m.extensions, "KHR_materials_ior", "ior", 1.5, where, file);
+  if (ior == 0.0) {
+    warn_once(file + ": " + where + " has KHR_materials_ior ior 0, which is not modelled; using 1.5");
+    ior = 1.5;
+  }
+  float t = checked_float(file, transmission,
+                          where + ".extensions.KHR_materials_transmission.transmissionFactor", 0.0, 1.0);
+  float eta = checked_float(file, ior, where + ".extensions.KHR_materials_ior.ior", 1.0);
+  if (m.alphaMode != "OPAQUE")
+    warn_once(file + ": scene uses alphaMode " + m.alphaMode + "; surfaces are drawn opaque");
+  return make_gltf_material(base, metallic, roughness, t, eta, emission, m.doubleSided);
+}
+
+}  // namespace pt::gltf

@@ -1,0 +1,17 @@
+// glTF materials as the contract's (README.md, "Materials"), for the glTF loader
+// (gltf_loader.cpp): metallic-roughness factors and the KHR_materials_emissive_strength,
+// KHR_materials_transmission and KHR_materials_ior extensions, every number checked.
+#pragma once
+
+#include <string>
+
+#include <tiny_gltf.h>
+
+#include "common/kernel/scene_types.h"
+
+namespace pt::gltf {
+
+// model.materials[index] as a pt::Material; `file` names the scene in error messages.
+Material convert_material(const tinygltf::Model& model, int index, const std::string& file);
+
+}  // namespace pt::gltf
