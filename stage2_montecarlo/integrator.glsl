@@ -15,10 +15,7 @@ vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path
   vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
   for (uint depth = 0u;; depth++) {
-    if (depth == params.depth_cap) {  // a safety net far beyond what roulette reaches
-      atomicAdd(counters[kCounterDepthCap], 1u);
-      break;
-    }
+    if (at_depth_cap(depth)) break;  // a safety net far beyond what roulette reaches
     Hit hit = intersect_scene(ray, kInfinity);
     if (hit.kind == kPrimNone) {
       L += beta * vec3(params.sky);

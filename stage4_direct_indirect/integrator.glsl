@@ -17,10 +17,7 @@ vec3 Li(Ray ray) {
   vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
   bool specular = true;    // camera ray, or the last bounce was a delta (mirror, glass)
   for (uint depth = 0u;; depth++) {
-    if (depth == params.depth_cap) {  // a safety net far beyond what roulette reaches
-      atomicAdd(counters[kCounterDepthCap], 1u);
-      break;
-    }
+    if (at_depth_cap(depth)) break;  // a safety net far beyond what roulette reaches
     Hit hit = intersect_scene(ray, kInfinity);
     if (hit.kind == kPrimNone) {
       // The sky is a light too: after a non-delta bounce light sampling counted it.
@@ -57,11 +54,7 @@ vec3 Li(Ray ray) {
       // Indirect light: one BRDF-sampled direction, as in stage3 (Eq. 4).
       LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());
       vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
-      // Never divide by a zero pdf: such a sample ends the path, and is counted.
-      if (!(s.pdf > 0.0f) || !is_finite(weight)) {
-        atomicAdd(counters[kCounterZeroPdf], 1u);
-        break;
-      }
+      if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
       wi = s.wi;
       beta *= weight;
       specular = false;

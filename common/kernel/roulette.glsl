@@ -23,4 +23,21 @@ float russian_roulette(vec3 beta, uint mode) {
   return 1.0f / p;
 }
 
+// The two other ways a path ends, both bookkeeping rather than the article's step, both
+// counted for the summary line. The depth cap: a safety net far beyond what roulette
+// reaches (--depth-cap).
+bool at_depth_cap(uint depth) {
+  if (depth != params.depth_cap) return false;
+  atomicAdd(counters[kCounterDepthCap], 1u);
+  return true;
+}
+
+// A sampled direction of zero pdf, or a weight that is not finite, ends the path: never
+// divide by a zero pdf.
+bool ends_at_zero_pdf(float pdf, vec3 weight) {
+  if (pdf > 0.0f && is_finite(weight)) return false;
+  atomicAdd(counters[kCounterZeroPdf], 1u);
+  return true;
+}
+
 #endif  // PT_ROULETTE_GLSL
