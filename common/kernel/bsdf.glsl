@@ -21,9 +21,8 @@ vec3 schlick_fresnel(vec3 f0, float cos_theta) {
 
 // Unpolarised Fresnel reflectance of a smooth dielectric; eta = n_transmitted / n_incident.
 // Returns 1 under total internal reflection.
-// cos_t^2 = 1 - sin_t^2 is formed as (eta^2 - 1 + cos_i^2) / eta^2: through 1 - sin^2 it
-// kept only the float spacing near 1 (6e-8), so at 89.99 degrees (cos_i^2 = 3e-8) glass of
-// ior 1 reflected 2.8% instead of nothing.
+// cos_t^2 = 1 - sin_t^2 is formed as (eta^2 - 1 + cos_i^2) / eta^2, which keeps the small
+// cos_i^2 of grazing angles that 1 - sin^2 would round away (docs/stability.md).
 float cos2_transmitted(float cos_i, float eta) {
   return (eta * eta - 1.0f + cos_i * cos_i) / (eta * eta);
 }
@@ -40,7 +39,7 @@ float fresnel_dielectric(float cos_i, float eta) {
 
 // GGX (Trowbridge-Reitz) distribution of microfacet normals h (local, h.z > 0):
 // alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2). sin^2 is taken as x^2 + y^2, not 1 - cos^2,
-// which cancels to nothing near the peak when alpha is small (the chi-square test found it).
+// which cancels to nothing near the peak when alpha is small.
 float ggx_d(vec3 h, float alpha) {
   float a2 = alpha * alpha;
   float d = a2 * h.z * h.z + (h.x * h.x + h.y * h.y);

@@ -15,15 +15,14 @@ float ulp_above(float x) {
 
 // The surface point's error, and so the height the new origin clears the surface by, in
 // units in the last place of its coordinates (kOffsetUlps ulps in each coordinate, seen
-// along the normal: sum |n_i| ulp(p_i)). The old 256 ulps of Wächter and Binder were
-// 2 units at 1e5 (ulp 0.0078), more than a unit-size scene's own features there: light
-// leaked through. Per coordinate (their int(256 n_i)) is not enough with fewer ulps: a
-// normal along x at x = 0.8 got 4e-7 while the point's y = 100 was 8e-6 uncertain.
+// along the normal: sum |n_i| ulp(p_i)). Few ulps, so that far from the origin the offset
+// stays below a small scene's own features; summed over the coordinates, so that a normal
+// along one axis still clears the error of the others (docs/stability.md has the numbers).
 const float kOffsetUlps = 8.0f;
 
 // Near zero ulps shrink to nothing, but a point there is known only as well as the
 // vertices it was interpolated from: coordinates count as at least kOffsetSceneScale
-// times the scene's radius (8 ulps of that are 1.5e-5 radii, the old near-zero offset).
+// times the scene's radius (8 ulps of that are 1.5e-5 radii).
 const float kOffsetSceneScale = 16.0f;
 
 float offset_height(vec3 p, vec3 n) {
