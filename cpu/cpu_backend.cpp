@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/render/render.h"
+#include "common/scene/bvh.h"
 #include "common/scene/scene.h"
 #include "cpu/cpu_variants.h"
 #include "cpu/triangle_soa.h"
@@ -34,12 +35,13 @@ class CpuBackend : public Backend {
   std::string kind() const override { return "cpu"; }
   std::string device_name() const override { return std::to_string(threads_) + " threads"; }
 
-  void set_scene(const Scene& scene, uint features) override {
+  void set_scene(const Scene& scene, uint features, const Bvh* bvh) override {
     kernel_ = cpu_kernel_for(kernels_, features);
     soa_ = std::make_unique<TriangleSoa>(scene.triangles);
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data(),
                          soa_->data.data(), soa_->stride};
+    if (bvh && !bvh->nodes.empty()) scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {

@@ -18,6 +18,10 @@ inline thread_local uint rng_state = 0u;  // the random-number state of one invo
 // triangle_soa.h): nullptr means the plain loop over triangles[].
 inline const float* triangle_soa = nullptr;
 inline uint triangle_soa_stride = 0u;  // floats per array (the padded triangle count)
+// The BVH over the triangles (common/scene/bvh.h, walked by common/kernel/bvh.glsl):
+// nullptr when the render has none (--accel none, or no triangles).
+inline const BvhNode* bvh_nodes = nullptr;
+inline const uint* bvh_indices = nullptr;
 inline Triangle triangle_at(uint i) { return triangles[i]; }
 
 // The features this copy of the kernel is compiled for (cpu_variants.h): one copy per

@@ -12,6 +12,8 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   lights = scene.lights;
   triangle_soa = scene.triangle_soa;
   triangle_soa_stride = scene.triangle_soa_stride;
+  bvh_nodes = scene.bvh_nodes;
+  bvh_indices = scene.bvh_indices;
   params = pass;
 }
 

@@ -180,9 +180,11 @@ Hit hit_triangles_blocked(Ray ray, RayShear rs, Hit best) {
   return nearest_triangle_lanes<16>(ray, rs, best);
 }
 
-// The CPU's nearest_triangle() (declared in intersect.glsl): the SIMD lanes when the
+// The CPU's nearest_triangle() (declared in intersect.glsl): the BVH (common/kernel/bvh.glsl)
+// when the pass asks for it and the render built one, else the SIMD lanes when the
 // triangles are also laid out as arrays, else the loop in index order; the same hits.
 Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
+  if (params.accel == kAccelBvh && bvh_nodes != nullptr) return nearest_triangle_bvh(ray, rs, best);
   if (triangle_soa != nullptr) return hit_triangles_blocked(ray, rs, best);
   return nearest_triangle_in_order(ray, rs, best);
 }

@@ -1,7 +1,8 @@
 // A compute pipeline made from embedded SPIR-V, with the one descriptor set that
 // gpu/kernel_bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
 // per-pass parameters (uniform), 5 the pass output, 6 the event counters, 7 the light
-// table (storage), 8 the triangles again as a uniform buffer (used when they fit).
+// table (storage), 8 the triangles again as a uniform buffer (used when they fit), 9 and
+// 10 the BVH's nodes and triangle indices (storage; common/scene/bvh.h).
 #pragma once
 
 #include <cstdint>
@@ -12,7 +13,7 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 9;
+constexpr uint32_t kBindingCount = 11;
 constexpr uint32_t kParamsBinding = 4;
 constexpr uint32_t kUniformTrianglesBinding = 8;
 

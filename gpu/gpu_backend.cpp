@@ -15,6 +15,7 @@
 
 #include "common/base/error.h"
 #include "common/render/render.h"
+#include "common/scene/bvh.h"
 #include "common/scene/scene.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/fault.h"
@@ -65,7 +66,7 @@ class GpuBackend : public Backend {
   std::string kind() const override { return "gpu"; }
   std::string device_name() const override { return context_.device_name(); }
 
-  void set_scene(const Scene& scene, uint features) override {
+  void set_scene(const Scene& scene, uint features, const Bvh* bvh) override {
     one_sample_ = false;  // a new scene may fit the loop budget again
     // Only what the kernel specialised to `features` reads is uploaded.
     bool spheres = (features & kFeatureSpheres) != 0u, lights = kernels_.uses_light_table;
@@ -77,6 +78,10 @@ class GpuBackend : public Backend {
     upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
     upload(point_lights_, scene.point_lights.data(), lights ? scene.point_lights.size() * sizeof(PointLight) : 0);
     upload(lights_, scene.lights.data(), lights ? scene.lights.size() * sizeof(Light) : 0);
+    // The BVH, or placeholders when the render searches every triangle (params.accel).
+    const bool has_bvh = bvh && !bvh->nodes.empty();
+    upload(bvh_nodes_, has_bvh ? bvh->nodes.data() : nullptr, has_bvh ? bvh->nodes.size() * sizeof(BvhNode) : 0);
+    upload(bvh_indices_, has_bvh ? bvh->indices.data() : nullptr, has_bvh ? bvh->indices.size() * sizeof(uint) : 0);
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
     // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
     std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
@@ -130,7 +135,8 @@ class GpuBackend : public Backend {
   PassResult run_dispatches(const FrameParams& params, std::span<glm::vec4> out) {
     const uint32_t width = params.width, height = params.height;
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_,   &materials_, &point_lights_,     &params_,
-                                            &output_,    &counters_, &lights_,    &uniform_triangles_};
+                                            &output_,    &counters_, &lights_,    &uniform_triangles_,
+                                            &bvh_nodes_, &bvh_indices_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -243,6 +249,7 @@ class GpuBackend : public Backend {
   bool lost_ = false;         // VK_ERROR_DEVICE_LOST seen: the device is not used again
   bool one_sample_ = false;   // the driver's loop budget ran out once: one sample per invocation
   Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_, uniform_triangles_;
+  Buffer bvh_nodes_, bvh_indices_;  // bindings 9 and 10
 };
 
 }  // namespace

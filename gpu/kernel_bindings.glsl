@@ -15,6 +15,10 @@ layout(std140, set = 0, binding = 4) uniform ParamsBuffer { FrameParams params; 
 layout(std430, set = 0, binding = 5) writeonly buffer OutputBuffer { vec4 pass_output[]; };
 layout(std430, set = 0, binding = 6) buffer CounterBuffer { uint counters[]; };
 layout(std430, set = 0, binding = 7) readonly buffer LightBuffer { Light lights[]; };
+// The BVH over the triangles (common/scene/bvh.h, walked by common/kernel/bvh.glsl); a
+// placeholder when the render has none (then params.accel is kAccelNone).
+layout(std430, set = 0, binding = 9) readonly buffer BvhNodeBuffer { BvhNode bvh_nodes[]; };
+layout(std430, set = 0, binding = 10) readonly buffer BvhIndexBuffer { uint bvh_indices[]; };
 uint rng_state;  // the random-number state of one invocation
 
 // The triangles again in a uniform buffer when the scene's fit in one (gpu_backend.cpp):

@@ -84,6 +84,7 @@ std::uint64_t render_key(const char* stage, const Scene& scene, const RenderSett
   // The frame parameters hold the camera, size, seed, sky, roulette, depth cap and the
   // scene's scale; the per-pass fields stay zero.
   FrameParams params = make_frame_params(scene, s);
+  params.accel = kAccelNone;  // the BVH gives the same image: a checkpoint resumes either way
   f.add(&params, sizeof params);
   std::uint32_t general = s.all_features ? 1u : 0u;
   f.add(&general, sizeof general);
@@ -189,7 +190,7 @@ RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const c
     refuse(path, "is of a different render (scene, seed, sky or --all-features, --rr, --depth-cap differ)",
            "resume with the options it was made with, or render without --resume");
   }
-  RenderResult r{Film(width, height), h.seconds, h.kernel_seconds, {}, 0, {}};
+  RenderResult r{Film(width, height), h.seconds, h.kernel_seconds, {}, 0, {}, {}};
   r.film.restore(h.spp, std::move(sums));
   r.passes = h.passes;
   r.counters.depth_cap = h.depth_cap;

@@ -56,6 +56,9 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_option("--target-error", o.render.target_error,
                  "stop once the estimated relative standard error of the image mean is below E")
       ->check(CLI::Range(0.0, 1.0));
+  std::string accel = "bvh";
+  app.add_option("--accel", accel, "triangle search: bvh (a bounding volume hierarchy) or none (every triangle); the same image")
+      ->capture_default_str()->check(CLI::IsMember({"bvh", "none"}));
   app.add_flag("--all-features", o.render.all_features,
                "run the general kernel instead of the one specialised to the scene's features");
   app.add_option("--checkpoint", o.checkpoint,
@@ -88,6 +91,7 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   // With a time or error target and no --spp, the samples are not capped.
   if ((o.render.time_budget > 0.0 || o.render.target_error > 0.0) && app.count("--spp") == 0) o.render.spp = 0xffffffffu;
   o.render.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
+  o.render.accel = accel == "none" ? kAccelNone : kAccelBvh;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");
   return o;
 }

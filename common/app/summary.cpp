@@ -46,6 +46,7 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
          "a lower albedo or --backend cpu)";
   }
   if (!tags.empty()) s += " " + tags;
+  if (r.bvh) s += " " + r.bvh->summary();
   return s;
 }
 

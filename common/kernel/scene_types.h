@@ -40,6 +40,14 @@ const uint kRouletteThroughput = 1u;  // continue with the path weight's largest
 
 const uint kNoLight = 0xffffffffu;
 
+// How the triangles are searched (FrameParams.accel, --accel): every triangle (the
+// article's brute force), or the bounding volume hierarchy (common/scene/bvh.h).
+const uint kAccelNone = 0u;
+const uint kAccelBvh = 1u;
+// The deepest a BVH may be: the traversal's stack (common/kernel/bvh.glsl) holds one
+// node per level, and the build (common/scene/bvh.cpp) never goes deeper.
+const uint kBvhStackSize = 64u;
+
 // Light kinds of the light table (stage4's light sampling).
 const uint kLightTriangle = 0u;  // an emissive triangle: a point uniform on its area
 const uint kLightSphere = 1u;    // an emissive sphere: a direction in the cone it subtends
@@ -148,8 +156,18 @@ struct FrameParams {
   uint first_row;          // the first image row of this dispatch (GPU)
   uint light_count;        // entries of the light table lights[]
   float scene_radius;      // the radius of the scene's bounding sphere (ray offsets scale with it)
-  uint pad0;               // unused
+  uint accel;              // kAccel*: the BVH or every triangle (the same hits)
   uint pad1;               // unused
+};
+
+// One node of the bounding volume hierarchy over the triangles (common/scene/bvh.h), in a
+// flat array with the root at 0. An inner node's children are nodes first_or_left and
+// first_or_left + 1; a leaf's triangles are bvh_indices[first_or_left ... + count - 1].
+struct BvhNode {
+  vec3 lo;             // the box's lower corner (rounded outward)
+  uint first_or_left;  // leaf: first entry of bvh_indices[]; inner node: the left child
+  vec3 hi;             // the box's upper corner (rounded outward)
+  uint count;          // leaf: its triangles (1 or more); 0: an inner node
 };
 
 #ifdef __cplusplus
@@ -168,6 +186,8 @@ static_assert(sizeof(FrameParams) == 144);
 static_assert(offsetof(FrameParams, sky) == 64 && offsetof(FrameParams, width) == 80);
 static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParams, seed) == 112);
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);
+static_assert(offsetof(FrameParams, accel) == 136);
+static_assert(sizeof(BvhNode) == 32 && offsetof(BvhNode, hi) == 16 && offsetof(BvhNode, count) == 28);
 }  // namespace pt
 #endif
 

@@ -15,6 +15,7 @@
 namespace pt {
 
 struct Scene;
+struct Bvh;
 
 // The scene arrays as the CPU kernel sees them (cpu/kernel_bindings.h; the GLSL buffers of gpu/kernel_bindings.glsl).
 struct KernelScene {
@@ -26,6 +27,8 @@ struct KernelScene {
   const Light* lights;
   const float* triangle_soa = nullptr;  // the triangles as arrays (triangle_soa.h), or nullptr
   uint triangle_soa_stride = 0;
+  const BvhNode* bvh_nodes = nullptr;  // the BVH (common/scene/bvh.h), or nullptr
+  const uint* bvh_indices = nullptr;
 };
 
 // A stage's kernel compiled as C++ (cpu/kernel_entry.h).
@@ -57,8 +60,10 @@ class Backend {
   virtual std::string device_name() const = 0;  // e.g. "2 threads", "llvmpipe (LLVM 15.0.6)"
   // Makes the scene's arrays available to the kernel (an upload on the GPU), and readies
   // the kernel specialised to `features` (kFeature* bits, common/kernel/features.glsl):
-  // arrays that no feature of the set reads are not uploaded.
-  virtual void set_scene(const Scene& scene, uint features) = 0;
+  // arrays that no feature of the set reads are not uploaded. `bvh`: the hierarchy over the
+  // scene's triangles (common/scene/bvh.h), or nullptr to search them all; it outlives
+  // the passes that follow (render() owns it).
+  virtual void set_scene(const Scene& scene, uint features, const Bvh* bvh) = 0;
   // Renders params.sample_count samples of every pixel into out (width * height values of
   // render_pixel(): rgb sum, squared-luminance sum).
   virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;

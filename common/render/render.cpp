@@ -64,6 +64,7 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   p.point_light_count = uint(scene.point_lights.size());
   p.seed = s.seed, p.roulette = s.roulette, p.depth_cap = s.depth_cap;
   p.light_count = uint(scene.lights.size());
+  p.accel = s.accel == kAccelBvh && !scene.triangles.empty() ? kAccelBvh : kAccelNone;
   p.sky_pick = sky_pick_probability(scene, s.sky);
   Bounds b = scene.bounds();
   p.scene_radius = b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f);
@@ -71,7 +72,7 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
 }
 
 RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& s, const RenderHooks& h) {
-  RenderResult result = h.resume ? *h.resume : RenderResult{Film(s.width, s.height), 0.0, 0.0, {}, 0, {}};
+  RenderResult result = h.resume ? *h.resume : RenderResult{Film(s.width, s.height), 0.0, 0.0, {}, 0, {}, {}};
   result.device_error.clear();
   const double seconds_before = result.seconds;
   FrameParams params = make_frame_params(scene, s);
@@ -80,8 +81,14 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
   bool shown = false;
   Clock::time_point start = Clock::now(), saved = start;
   std::uint64_t done = result.film.spp();
+  // The BVH, once per render: built here from the scene, read by the backend's passes.
+  std::optional<Bvh> bvh;
+  if (params.accel == kAccelBvh) {
+    bvh = build_bvh(scene.triangles);
+    result.bvh = bvh->stats;
+  }
   try {
-    backend.set_scene(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky));
+    backend.set_scene(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky), bvh ? &*bvh : nullptr);
   } catch (const Error& e) {  // a device that cannot hold the scene: nothing rendered yet
     if (e.code() != kExitNoDevice) throw;
     result.device_error = e.what();

@@ -5,12 +5,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
 
 #include "common/render/backend.h"
 #include "common/render/film.h"
+#include "common/scene/bvh.h"
 
 namespace pt {
 
@@ -31,6 +33,8 @@ struct RenderSettings {
                                             // error of the image mean is below it
   bool all_features = false;                // the general kernel, not the one specialised
                                             // to the scene's features (--all-features)
+  std::uint32_t accel = kAccelBvh;          // kAccelBvh or kAccelNone (--accel): how the
+                                            // triangles are searched; the same image
 };
 
 // How a render is watched and resumed; none of it changes the image.
@@ -66,6 +70,7 @@ struct RenderResult {
   std::uint64_t passes = 0;  // passes done: the next pass's place in the schedule
   std::string device_error;  // set when the backend failed (exit 4): the film has the
                              // samples done before it
+  std::optional<BvhStats> bvh;  // the BVH this render built (none: --accel none or no triangles)
 };
 
 // Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's

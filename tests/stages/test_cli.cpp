@@ -90,6 +90,18 @@ TEST_CASE("cli: the summary names the scene's features, and the general kernel w
   CHECK(general.out.find("[kernel: general, --all-features]") != std::string::npos);
 }
 
+TEST_CASE("cli: --accel bvh (the default) says its BVH in the summary, --accel none does not", "[cli][bvh]") {
+  Run r = run("--backend cpu --width 8 --height 8 --out " + (scratch() / "b.exr").string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find(" B/tri]") != std::string::npos);
+  CHECK(r.out.find("[bvh: ") != std::string::npos);
+  Run none = run("--backend cpu --width 8 --height 8 --accel none --out " + (scratch() / "n.exr").string());
+  REQUIRE(none.code == 0);
+  CHECK(none.out.find("[bvh: ") == std::string::npos);
+  CHECK(run("--backend cpu --width 8 --height 8 --accel kd --out " + (scratch() / "k.exr").string()).code == 2);
+}
+
 TEST_CASE("cli: degenerate triangles are counted, skipped and said once", "[cli][features]") {
   Run r = run("--backend cpu --width 8 --height 8 --scene " PT_TEST_DATA_DIR "/gltf/degenerate.gltf --out " +
               (scratch() / "d.exr").string());

@@ -98,6 +98,8 @@ TEST_CASE("checkpoint: the render key changes with everything that determines th
   RenderSettings more = s;
   more.spp = 1000;  // the sample count is what a resume changes
   CHECK(render_key("stage4_direct_indirect", scene, more) == key);
+  more.accel = s.accel == kAccelBvh ? kAccelNone : kAccelBvh;  // the same image either way
+  CHECK(render_key("stage4_direct_indirect", scene, more) == key);
 
   CHECK(render_key("stage3_importance", scene, s) != key);
   std::vector<RenderSettings> changed(7, s);

@@ -1,0 +1,122 @@
+// The nearest-triangle search through the bounding volume hierarchy (common/scene/bvh.h
+// builds it on the host): the step after the article's GPU section, which ends "yet without
+// an acceleration structure". The same hits as the brute force of intersect.glsl, bit for
+// bit: t, triangle and barycentrics (tests/common/kernel/test_bvh_traversal.cpp).
+#ifndef PT_BVH_GLSL
+#define PT_BVH_GLSL
+
+#include "common/kernel/intersect.glsl"
+
+// The box grows by this fraction of its corners' distance from the ray origin (summed over
+// the axes) before the slab test: the watertight triangle test decides with errors of a
+// few kGamma5 of that distance (intersect.glsl), so a triangle it hits lies inside the
+// grown box, whatever the float rounding of either test (2^-15, about 100 kGamma5).
+const float kBoxPad = 3.0517578e-05f;
+// pbrt's 1 + 2 gamma(3): the far distance of a slab, rounded up past its own rounding.
+const float kBoxRoundUp = 1.00000036f;
+
+// 1 / dir, with the infinities of a zero component made the largest float: then a box
+// corner at distance 0 along that axis gives 0, not 0 * inf = NaN, and the ray inside the
+// slab stays inside it.
+vec3 inverse_direction(vec3 dir) {
+  return clamp(vec3(1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z), vec3(-kInfinity), vec3(kInfinity));
+}
+
+// The distances [enter, exit] along the ray within the box lo..hi, clipped to [0, t_max]
+// and erring on the large side; enter > exit: the ray misses it. The corners are taken
+// relative to the origin as hit_triangle() takes the vertices: rounding is monotone, so
+// the rounded vertices stay inside the rounded corners. A NaN (a NaN ray) fails every
+// comparison below and leaves the interval as it was: such a ray is never cut off early.
+vec2 box_span(Ray ray, vec3 inv_dir, vec3 lo, vec3 hi, float t_max) {
+  vec3 a_lo = lo - ray.origin;
+  vec3 a_hi = hi - ray.origin;
+  float pad = kBoxPad * (larger(abs(a_lo.x), abs(a_hi.x)) + larger(abs(a_lo.y), abs(a_hi.y)) +
+                         larger(abs(a_lo.z), abs(a_hi.z)));
+  vec3 t0 = (a_lo - vec3(pad)) * inv_dir;
+  vec3 t1 = (a_hi + vec3(pad)) * inv_dir;
+  float t_enter = 0.0f;
+  float t_exit = t_max;
+  float near_x = t0.x < t1.x ? t0.x : t1.x;
+  float far_x = (t0.x < t1.x ? t1.x : t0.x) * kBoxRoundUp;
+  float near_y = t0.y < t1.y ? t0.y : t1.y;
+  float far_y = (t0.y < t1.y ? t1.y : t0.y) * kBoxRoundUp;
+  float near_z = t0.z < t1.z ? t0.z : t1.z;
+  float far_z = (t0.z < t1.z ? t1.z : t0.z) * kBoxRoundUp;
+  t_enter = near_x > t_enter ? near_x : t_enter;
+  t_enter = near_y > t_enter ? near_y : t_enter;
+  t_enter = near_z > t_enter ? near_z : t_enter;
+  t_exit = far_x < t_exit ? far_x : t_exit;
+  t_exit = far_y < t_exit ? far_y : t_exit;
+  t_exit = far_z < t_exit ? far_z : t_exit;
+  return vec2(t_enter, t_exit);
+}
+
+// Whether the ray passes through the box lo..hi within [0, t_max] (never a false "no").
+// t_max itself counts: a triangle at exactly the best distance may still win on index.
+bool hit_box(Ray ray, vec3 inv_dir, vec3 lo, vec3 hi, float t_max) {
+  vec2 span = box_span(ray, inv_dir, lo, hi, t_max);
+  return span.x <= span.y;
+}
+
+// hit_triangle(), with the brute force's tie rule kept in any order: of two hits at the
+// same distance the lower index wins. hit_triangle() keeps `best` on an equal t, which in
+// index order is the lower index; the BVH may test the lower index later, so it is given
+// the next float above best.t as its bound (t < next(best.t) is t <= best.t).
+Hit hit_triangle_tie(Ray ray, RayShear rs, uint index, Hit best) {
+  if (best.kind != kPrimTriangle || index > best.prim) return hit_triangle(ray, rs, index, best);
+  Hit bound = best;
+  bound.t = intBitsToFloat(floatBitsToInt(best.t) + 1);  // best.t > 0 and finite here
+  Hit found = hit_triangle(ray, rs, index, bound);
+  return found.prim == index && found.kind == kPrimTriangle ? found : best;
+}
+
+// The nearest hit of `best` and every triangle, found by walking the BVH: a leaf's
+// triangles by hit_triangle_tie(), an inner node's nearer child first, the farther one on
+// a stack of pending nodes with its entry distance (skipped when it is popped if a nearer
+// hit has been found since). No recursion: the stack is an array of kBvhStackSize, as
+// deep as the build lets the tree grow.
+Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
+  if (params.triangle_count == 0u) return best;
+  vec3 inv_dir = inverse_direction(ray.dir);
+  if (!hit_box(ray, inv_dir, bvh_nodes[0].lo, bvh_nodes[0].hi, best.t)) return best;
+  uint stack_node[kBvhStackSize];
+  float stack_t[kBvhStackSize];
+  uint top = 0u;
+  uint node = 0u;
+  while (true) {
+    BvhNode n = bvh_nodes[node];
+    bool descend = false;
+    if (n.count > 0u) {
+      for (uint i = 0u; i < n.count; i++) best = hit_triangle_tie(ray, rs, bvh_indices[n.first_or_left + i], best);
+    } else {
+      uint left = n.first_or_left;
+      vec2 span_l = box_span(ray, inv_dir, bvh_nodes[left].lo, bvh_nodes[left].hi, best.t);
+      vec2 span_r = box_span(ray, inv_dir, bvh_nodes[left + 1u].lo, bvh_nodes[left + 1u].hi, best.t);
+      bool hit_l = span_l.x <= span_l.y;
+      bool hit_r = span_r.x <= span_r.y;
+      if (hit_l && hit_r) {
+        bool left_first = span_l.x <= span_r.x;
+        stack_node[top] = left_first ? left + 1u : left;
+        stack_t[top] = left_first ? span_r.x : span_l.x;
+        top++;
+        node = left_first ? left : left + 1u;
+        descend = true;
+      } else if (hit_l || hit_r) {
+        node = hit_l ? left : left + 1u;
+        descend = true;
+      }
+    }
+    // Nothing below this node: the next pending node that a hit could still lie in.
+    while (!descend && top > 0u) {
+      top--;
+      if (stack_t[top] <= best.t) {
+        node = stack_node[top];
+        descend = true;
+      }
+    }
+    if (!descend) break;
+  }
+  return best;
+}
+
+#endif  // PT_BVH_GLSL
