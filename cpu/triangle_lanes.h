@@ -189,4 +189,11 @@ Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
   return nearest_triangle_in_order(ray, rs, best);
 }
 
+// The CPU's occluded_triangles() (declared in intersect.glsl): the BVH's any-hit walk, else
+// whether the search above finds a hit.
+bool occluded_triangles(Ray ray, RayShear rs, float t_max) {
+  if (params.accel == kAccelBvh && bvh_nodes != nullptr) return occluded_bvh(ray, rs, t_max);
+  return nearest_triangle(ray, rs, Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone)).kind != kPrimNone;
+}
+
 #endif  // PT_CPU_TRIANGLE_LANES_H

@@ -11,4 +11,10 @@ Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
   return nearest_triangle_in_order(ray, rs, best);
 }
 
+// Whether any triangle is hit closer than t_max: the BVH's any-hit walk, or the loop.
+bool occluded_triangles(Ray ray, RayShear rs, float t_max) {
+  if (params.accel == kAccelBvh) return occluded_bvh(ray, rs, t_max);
+  return nearest_triangle_in_order(ray, rs, Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone)).kind != kPrimNone;
+}
+
 #endif  // PT_GPU_TRIANGLE_SEARCH_GLSL

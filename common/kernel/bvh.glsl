@@ -119,4 +119,40 @@ Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
   return best;
 }
 
+// Whether any triangle is hit closer than t_max (a shadow ray): the first hit found ends the
+// walk, in any order, so no tie rule is needed. Both children of a node go on the stack;
+// it holds at most one pending sibling per level and the two children just pushed, which
+// the build's depth keeps within kBvhStackSize.
+bool occluded_bvh(Ray ray, RayShear rs, float t_max) {
+  if (params.triangle_count == 0u) return false;
+  vec3 inv_dir = inverse_direction(ray.dir);
+  Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+  uint stack_node[kBvhStackSize];
+  uint top = 0u;
+  if (hit_box(ray, inv_dir, bvh_nodes[0].lo, bvh_nodes[0].hi, t_max)) {
+    stack_node[0] = 0u;
+    top = 1u;
+  }
+  while (top > 0u) {
+    top--;
+    BvhNode n = bvh_nodes[stack_node[top]];
+    if (n.count > 0u) {
+      for (uint i = 0u; i < n.count; i++) {
+        if (hit_triangle(ray, rs, bvh_indices[n.first_or_left + i], none).kind != kPrimNone) return true;
+      }
+    } else {
+      uint left = n.first_or_left;
+      if (hit_box(ray, inv_dir, bvh_nodes[left].lo, bvh_nodes[left].hi, t_max)) {
+        stack_node[top] = left;
+        top++;
+      }
+      if (hit_box(ray, inv_dir, bvh_nodes[left + 1u].lo, bvh_nodes[left + 1u].hi, t_max)) {
+        stack_node[top] = left + 1u;
+        top++;
+      }
+    }
+  }
+  return false;
+}
+
 #endif  // PT_BVH_GLSL

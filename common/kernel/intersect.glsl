@@ -163,6 +163,25 @@ Hit intersect_scene(Ray ray, float t_max) {
   return best;
 }
 
+// Whether any triangle is hit closer than t_max: the answer nearest_triangle() gives, as the
+// backend finds it fastest (the BVH's any-hit walk, common/kernel/bvh.glsl, or the nearest
+// hit). Defined by the backend after this file, as nearest_triangle() is.
+bool occluded_triangles(Ray ray, RayShear rs, float t_max);
+
+// Whether anything is hit closer than t_max (shadow rays): intersect_scene(ray, t_max)
+// finds a hit exactly when this is true.
+bool occluded_scene(Ray ray, float t_max) {
+  RayShear rs = make_ray_shear(ray.dir);
+  if (has_feature(kFeatureTriangles) && occluded_triangles(ray, rs, t_max)) return true;
+  if (has_feature(kFeatureSpheres)) {
+    Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+    for (uint i = 0u; i < params.sphere_count; i++) {
+      if (hit_sphere(ray, i, none).kind != kPrimNone) return true;
+    }
+  }
+  return false;
+}
+
 // What the integrator needs to know about the point a ray hit.
 struct Surface {
   vec3 p;         // position

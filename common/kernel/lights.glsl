@@ -150,14 +150,14 @@ const float kShadowEndUlps = 16.0f;
 // stops just short of the light point so that the light itself does not block it.
 bool occluded(vec3 p, vec3 n, LightSample ls) {
   Ray shadow = spawn_ray(p, n, ls.wi);
-  if (ls.dist == kInfinity) return intersect_scene(shadow, kInfinity).kind != kPrimNone;
+  if (ls.dist == kInfinity) return occluded_scene(shadow, kInfinity);
   // Aim from the offset origin at the light point itself (pbrt's SpawnRayTo).
   vec3 y = p + ls.dist * ls.wi;
   vec3 to_light = y - shadow.origin;
   float length_to_light = length(to_light);
   shadow.dir = to_light / length_to_light;
   float short_of = max(length_to_light * 1e-4f, kShadowEndUlps * ulp_above(max(abs(y.x), max(abs(y.y), abs(y.z)))));
-  return intersect_scene(shadow, length_to_light - short_of).kind != kPrimNone;
+  return occluded_scene(shadow, length_to_light - short_of);
 }
 
 #endif  // PT_LIGHTS_GLSL

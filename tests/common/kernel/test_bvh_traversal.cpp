@@ -50,6 +50,11 @@ void compare(kernel::Ray ray, float t_max, Tally& tally) {
   kernel::Hit fast = kernel::nearest_triangle_bvh(ray, rs, none);
   tally.rays++;
   tally.hits += brute.kind == pt::kPrimTriangle;
+  // The any-hit walk of shadow rays: a hit exactly when the brute force finds one.
+  if (kernel::bvh_nodes != nullptr && kernel::occluded_bvh(ray, rs, t_max) != (brute.kind != pt::kPrimNone)) {
+    tally.mismatches++;
+    UNSCOPED_INFO("occluded_bvh differs from the brute force: t_max " << t_max << ", brute kind " << brute.kind);
+  }
   if (!same_hit(brute, fast)) {
     tally.mismatches++;
     UNSCOPED_INFO("mismatch: brute t " << brute.t << " prim " << brute.prim << " kind " << brute.kind << "; bvh t "
