@@ -15,19 +15,7 @@ import make_scenes  # noqa: E402  (the glTF writer and the icosphere)
 def main(path, subdivisions=6):
     g = make_scenes.Gltf("make_sphere_mesh.py: a tessellated sphere in the Cornell box")
     g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
-    white = g.material("white", (0.73, 0.73, 0.73))
-    red = g.material("red", (0.65, 0.05, 0.05))
-    green = g.material("green", (0.12, 0.45, 0.15))
-    light = g.material("light", (0.78, 0.78, 0.78), **make_scenes.emissive(1.0, (17.0, 12.0, 4.0)))
-    walls = [("floor", white, [(-1, -1, 1), (1, -1, 1), (1, -1, -1), (-1, -1, -1)]),
-             ("ceiling", white, [(-1, 1, -1), (1, 1, -1), (1, 1, 1), (-1, 1, 1)]),
-             ("back", white, [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1)]),
-             ("left", red, [(-1, -1, 1), (-1, -1, -1), (-1, 1, -1), (-1, 1, 1)]),
-             ("right", green, [(1, -1, -1), (1, -1, 1), (1, 1, 1), (1, 1, -1)])]
-    for name, material, quad in walls:
-        g.node(name=name, mesh=g.mesh(name, quad, [(0, 1, 2), (0, 2, 3)], material))
-    lamp = [(-0.25, 0.998, -0.25), (0.25, 0.998, -0.25), (0.25, 0.998, 0.25), (-0.25, 0.998, 0.25)]
-    g.node(name="light", mesh=g.mesh("light", lamp, [(0, 1, 2), (0, 2, 3)], light))
+    white = make_scenes.cornell_room(g)
     points, faces = make_scenes.icosphere(subdivisions)
     g.node(name="sphere", mesh=g.mesh("sphere", points, faces, white), translation=[0, -0.45, 0], scale=[0.5] * 3)
     g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.6911, "znear": 0.1, "zfar": 100}}]

@@ -138,10 +138,8 @@ def emissive(strength, color):
             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength * peak}}}
 
 
-def cornell():
-    # The same box as builtin:cornell: the room [-1, 1]^3 open at +z, seen from z = 3.9
-    g = Gltf("make_scenes.py: Cornell box")
-    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+def cornell_room(g):
+    """The room of builtin:cornell, [-1, 1]^3 open at +z, with its ceiling light; returns the white material."""
     white = g.material("white", (0.73, 0.73, 0.73))
     red = g.material("red", (0.65, 0.05, 0.05))
     green = g.material("green", (0.12, 0.45, 0.15))
@@ -156,6 +154,14 @@ def cornell():
         g.node(name=name, mesh=g.mesh(name, quad, [(0, 1, 2), (0, 2, 3)], material))
     lamp = [(-0.25, 0.998, -0.25), (0.25, 0.998, -0.25), (0.25, 0.998, 0.25), (-0.25, 0.998, 0.25)]
     g.node(name="light", mesh=g.mesh("light", lamp, [(0, 1, 2), (0, 2, 3)], light))  # faces down
+    return white
+
+
+def cornell():
+    # The same box as builtin:cornell, seen from z = 3.9
+    g = Gltf("make_scenes.py: Cornell box")
+    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    white = cornell_room(g)
     cube = g.mesh("cube", CUBE_POINTS, outward(CUBE_POINTS, quads_to_triangles(CUBE_QUADS)), white)
     g.node(name="short_box", mesh=cube, translation=[0.33, -0.7, 0.3], rotation=about_y(-0.31), scale=[0.3] * 3)
     g.node(name="tall_box", mesh=cube, translation=[-0.35, -0.4, -0.3], rotation=about_y(0.29),
