@@ -1,4 +1,4 @@
-// The lab check build's definitions of the functions labs 2-4 ask for (cmake/Labs.cmake,
+// The lab check build's definitions of the functions labs 2-5 ask for (cmake/Labs.cmake,
 // PT_LAB_CHECK): each calls the student's version from labs/labN.glsl when PT_LAB_STUB=N
 // selects lab N at run time, else the reference, so one build shows every lab's tests
 // failing with its stubs (tools/expect_lab_failure.sh). C++ only; included inside a kernel's
@@ -9,12 +9,14 @@ namespace reference {
 #include "common/kernel/uniform_hemisphere.glsl"
 #include "common/kernel/cosine_hemisphere.glsl"
 #include "common/kernel/triangle_light.glsl"
+#include "common/kernel/box_slab.glsl"
 }  // namespace reference
 
 namespace student {
 #include "labs/lab2.glsl"
 #include "labs/lab3.glsl"
 #include "labs/lab4.glsl"
+#include "labs/lab5.glsl"
 }  // namespace student
 
 vec3 sample_uniform_hemisphere(vec2 u) {
@@ -33,4 +35,11 @@ float cosine_hemisphere_pdf(float cos_theta) {
 LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   return pt::lab::selected() == 4 ? student::sample_triangle_light(index, p, u, pick)
                                   : reference::sample_triangle_light(index, p, u, pick);
+}
+vec3 inverse_direction(vec3 dir) {
+  return pt::lab::selected() == 5 ? student::inverse_direction(dir) : reference::inverse_direction(dir);
+}
+vec2 box_span(Ray ray, vec3 inv_dir, vec3 lo, vec3 hi, float t_max) {
+  return pt::lab::selected() == 5 ? student::box_span(ray, inv_dir, lo, hi, t_max)
+                                  : reference::box_span(ray, inv_dir, lo, hi, t_max);
 }

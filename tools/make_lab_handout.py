@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Makes the students' copy of lab N (docs/labs/README.md; the labs follow the article's
-Eq. 2 to 5): the repository without .git and build folders, in which the reference code of
-the functions lab N asks for (the files its build replaces by labs/labN.glsl, see
-cmake/Labs.cmake) is removed from their bodies, and the chapters' excerpts of them too, so
-the answer is not handed out with the question.
+"""Makes the students' copy of lab N (docs/labs/README.md; labs 1-4 follow the article's
+Eq. 2 to 5, lab 5 the BVH after it): the repository without .git and build folders, in which
+the reference code of the functions lab N asks for (the files its build replaces by
+labs/labN.glsl, see cmake/Labs.cmake) is removed from their bodies, and the chapters'
+excerpts of them too, so the answer is not handed out with the question.
 usage: tools/make_lab_handout.py N DEST     (DEST must not exist yet)"""
 import os
 import re
@@ -16,7 +16,7 @@ import docs_check  # noqa: E402
 
 # What a function of each return type returns in the handout in place of its body; lab N's
 # build never compiles it (it compiles labs/labN.glsl instead).
-DEFAULTS = {"vec3": "vec3(0.0f)", "float": "0.0f", "LightSample": "no_light()"}
+DEFAULTS = {"vec2": "vec2(0.0f)", "vec3": "vec3(0.0f)", "float": "0.0f", "LightSample": "no_light()"}
 # The files whose functions each lab asks for: what its build replaces by labs/labN.glsl
 # (cmake/Labs.cmake; lab 1: stage1's integrator, pt_add_stage's LAB option).
 REFERENCE_FILES = {
@@ -24,6 +24,7 @@ REFERENCE_FILES = {
     2: ["common/kernel/uniform_hemisphere.glsl"],
     3: ["common/kernel/cosine_hemisphere.glsl"],
     4: ["common/kernel/triangle_light.glsl"],
+    5: ["common/kernel/box_slab.glsl"],
 }
 DEFINITION = re.compile(r"^(\w+)\s+(\w+)\s*\(.*\{\s*$")
 
@@ -80,8 +81,8 @@ def strip_docs(dest, lab, names):
 
 
 def main():
-    if len(sys.argv) != 3 or sys.argv[1] not in ("1", "2", "3", "4"):
-        print("usage: tools/make_lab_handout.py N DEST   (N = 1, 2, 3 or 4; DEST a new folder)", file=sys.stderr)
+    if len(sys.argv) != 3 or sys.argv[1] not in ("1", "2", "3", "4", "5"):
+        print("usage: tools/make_lab_handout.py N DEST   (N = 1 to 5; DEST a new folder)", file=sys.stderr)
         return 2
     lab, dest = int(sys.argv[1]), sys.argv[2]
     if os.path.exists(dest):
