@@ -5,13 +5,16 @@
 // (naive_raycast.comp). Article: the raycasting step (Eq. 2), its closest-hit search. The
 // rays sit in binding 3 (gpu/kernel_bindings.glsl's point_lights: a position and an intensity 16 bytes
 // apart, read here as origin and direction); params.triangle_count is the triangle count,
-// params.width the ray count.
+// params.width the ray count. With params.accel = kAccelBvh and the BVH at bindings 9 and 10
+// it walks common/kernel/bvh.glsl instead (the accel section, accel_gpu.cpp). The build's
+// kernel_definitions.glsl defines what the kernel files declare (cmake/Labs.cmake).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "common/kernel/scene_types.h"
 #include "gpu/kernel_bindings.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "kernel_definitions.glsl"
 #include "gpu/triangle_search.glsl"
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
