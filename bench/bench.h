@@ -23,6 +23,12 @@ struct Config {
   std::string cache_dir = "build/bench_cache";
   std::string out_dir = "docs/results";
   std::uint32_t seed = 1;
+  // The acceleration section (issue 17, accel.cpp).
+  int accel_size = 512;              // camera rays: accel_size x accel_size
+  int accel_max_level = 8;           // the largest icosphere: 20 * 4^level triangles
+  double accel_seconds = 0.5;        // per method, scene and ray set
+  double accel_brute_limit = 3.0;    // the brute force skips a count it would spend longer on
+  std::string command;               // the command line, for the record (accel_run.txt)
 };
 
 // One line of the run list: a scene, a stage, a backend.
@@ -74,6 +80,7 @@ ErrorMetrics compare_images(const std::vector<float>& image, const Reference& re
 // The sections; each writes a CSV into config.out_dir and a short table on stdout.
 void run_error_study(const std::vector<Run>& runs, const Config& config);
 void run_speed(const Config& config);
+void run_accel(const Config& config);
 void run_specialisation(const std::vector<std::string>& stages, const std::vector<std::string>& backends,
                         const Config& config);
 

@@ -1,8 +1,9 @@
 // pt_bench: the speed-versus-accuracy lab (issue 6) and the measured gain of specialised
 // kernels (issue 8). Sections: `error` (error against time per scene x stage x backend,
 // docs/results/convergence.csv), `speed` (rays per second, speed.csv), `special`
-// (specialised against general kernels, specialisation.csv). bench/run.sh runs them all
-// and makes the plots and docs/results.md.
+// (specialised against general kernels, specialisation.csv), `accel` (issue 17: rays per
+// second against the triangle count, brute force, BVH and Embree, accel.csv). bench/run.sh
+// runs them all and makes the plots and docs/results.md.
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -66,14 +67,14 @@ int main(int argc, char** argv) {
   return pt::run_guarded("pt_bench", [&] {
     pt::bench::Config config;
     std::string runs_path = "bench/runs.txt";
-    std::vector<std::string> scenes, stages, backends, sections{"error", "speed", "special"};
+    std::vector<std::string> scenes, stages, backends, sections{"error", "speed", "special", "accel"};
     CLI::App app{"pt_bench: error against time per scene, stage and backend; rays per second; specialised "
                  "against general kernels. CSV files into --out."};
     app.add_option("--runs", runs_path, "the run list: lines 'SCENE STAGES BACKENDS'")->capture_default_str();
     app.add_option("--scene", scenes, "only these scenes of the run list (repeatable)");
     app.add_option("--stage", stages, "only these stages: 1..4 or program names (repeatable)");
     app.add_option("--backend", backends, "only these backends: cpu, gpu (repeatable)");
-    app.add_option("--section", sections, "error, speed, special (repeatable)")->capture_default_str();
+    app.add_option("--section", sections, "error, speed, special, accel (repeatable)")->capture_default_str();
     app.add_option("--size", config.size, "image width and height")->capture_default_str()->check(CLI::Range(1, 4096));
     app.add_option("--seconds", config.seconds, "per run: stop after the first checkpoint that takes this long")
         ->capture_default_str()->check(CLI::PositiveNumber);
@@ -82,6 +83,15 @@ int main(int argc, char** argv) {
     app.add_option("--cache", config.cache_dir, "directory of the cached references")->capture_default_str();
     app.add_option("--out", config.out_dir, "directory of the CSV files")->capture_default_str();
     app.add_option("--seed", config.seed, "seed of the study's renders")->capture_default_str();
+    app.add_option("--accel-size", config.accel_size, "accel: camera rays per side of the image")
+        ->capture_default_str()->check(CLI::Range(1, 4096));
+    app.add_option("--accel-max-level", config.accel_max_level, "accel: the largest icosphere, 20 * 4^level triangles")
+        ->capture_default_str()->check(CLI::Range(1, 9));
+    app.add_option("--accel-seconds", config.accel_seconds, "accel: seconds per method, scene and ray set")
+        ->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_option("--accel-brute-limit", config.accel_brute_limit,
+                   "accel: the brute force skips a triangle count it would spend longer on (seconds)")
+        ->capture_default_str()->check(CLI::PositiveNumber);
     try {
       app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -98,8 +108,8 @@ int main(int argc, char** argv) {
     }
     std::set<std::string> section_set(sections.begin(), sections.end());
     for (const std::string& s : section_set) {
-      if (s != "error" && s != "speed" && s != "special") {
-        throw pt::Error(pt::kExitBadOption, "unknown section '" + s + "'; use error, speed or special");
+      if (s != "error" && s != "speed" && s != "special" && s != "accel") {
+        throw pt::Error(pt::kExitBadOption, "unknown section '" + s + "'; use error, speed, special or accel");
       }
     }
     if (section_set.count("error")) {
@@ -118,6 +128,11 @@ int main(int argc, char** argv) {
       std::vector<std::string> bk = backends.empty() ? std::vector<std::string>{"cpu", "gpu"} : backends;
       std::printf("== specialised against general kernels\n");
       pt::bench::run_specialisation(st, bk, config);
+    }
+    if (section_set.count("accel")) {
+      for (int i = 0; i < argc; i++) config.command += (i ? " " : "") + std::string(argv[i]);
+      std::printf("== rays per second against the triangle count (issue 17)\n");
+      pt::bench::run_accel(config);
     }
     return 0;
   });

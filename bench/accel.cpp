@@ -1,0 +1,320 @@
+// pt_bench's acceleration section (issue 17; accel.h): rays per second of the nearest-hit
+// search against the triangle count, from builtin:cornell's 36 triangles to a 1.3-million
+// triangle icosphere in the Cornell room, for the same camera and diffuse bounce rays in
+// the same run: the brute force (the article's search, Eq. 2, as the CPU kernel compiles
+// it), the BVH on the CPU and on the GPU backend, and Embree 3. The CPU methods run on
+// all cores, alternating, so that they see the same load. Then the build of the largest
+// mesh: build_bvh against Embree's high-quality build. Writes docs/results/accel.csv,
+// accel_build.csv and accel_run.txt (the command, the date and the machine's load).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <thread>
+#include <utility>
+
+#include "bench/accel.h"
+#include "bench/bench.h"
+#include "common/base/error.h"
+#include "cpu/triangle_soa.h"
+
+namespace pt::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kMinBruteRays = 2048;  // fewer would say little; skip the count instead
+
+unsigned cores() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double thread_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return in ? a + " " + b + " " + c : "unknown";
+}
+
+// work(first, last) over [0, n) in chunks taken from a shared counter by every core;
+// returns the CPU seconds the threads spent.
+template <class F> double on_all_cores(std::size_t n, std::size_t chunk, F work) {
+  std::atomic<std::size_t> next{0};
+  std::atomic<double> cpu{0.0};
+  auto worker = [&] {
+    const double t0 = thread_cpu_seconds();
+    for (std::size_t a; (a = next.fetch_add(chunk)) < n;) work(a, std::min(n, a + chunk));
+    cpu.fetch_add(thread_cpu_seconds() - t0);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned i = 1; i < cores(); i++) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return cpu.load();
+}
+
+// One method on one ray set: its speed and what it found.
+struct Result {
+  Result(std::string m, std::string d) : method(std::move(m)), device(std::move(d)) {}
+  std::string method, device, note;
+  bool measured = false;
+  double wall = 0.0, cpu = 0.0;  // seconds of the counted passes (cpu: summed over threads)
+  std::uint64_t rays = 0, passes = 0;
+  std::vector<float> t;                     // per ray of the set (kMiss: no hit)
+  std::vector<std::size_t> subset;          // the rays traced, when not all of them
+  std::function<void(bool counted)> pass;   // one pass over its rays
+};
+
+// The methods' passes in turn until each has run `seconds` (after one uncounted warm-up
+// pass each, which also leaves the distances): all see the same load from other jobs.
+void race(std::vector<Result*> methods, double seconds) {
+  for (Result* m : methods) m->pass(false);
+  for (bool more = true; more;) {
+    more = false;
+    for (Result* m : methods) {
+      if (m->wall < seconds) m->pass(true), more = more || m->wall < seconds;
+    }
+  }
+}
+
+// A pass of a CPU method over its rays on all cores.
+std::function<void(bool)> cpu_pass(Result& r, const RaySet& rays, std::function<void()> setup,
+                                   std::function<void(const std::size_t*, std::size_t, std::size_t, float*)> trace) {
+  return [&r, &rays, setup, trace](bool counted) {
+    r.t.assign(rays.size(), kMiss);
+    setup();
+    const std::size_t* index = r.subset.empty() ? nullptr : r.subset.data();
+    const std::size_t n = r.subset.empty() ? rays.size() : r.subset.size();
+    Clock::time_point t0 = Clock::now();
+    double cpu = on_all_cores(n, index ? 4 : 256, [&](std::size_t a, std::size_t b) { trace(index, a, b, r.t.data()); });
+    if (counted) r.wall += seconds_since(t0), r.cpu += cpu, r.rays += n, r.passes++;
+  };
+}
+
+bool differs(float a, float b) {
+  if (std::isinf(a) || std::isinf(b)) return a != b;
+  return std::fabs(a - b) > 1e-5f * std::max(a, b);
+}
+
+std::string fixed(double v, int digits) {
+  char s[64];
+  std::snprintf(s, sizeof s, "%.*f", digits, v);
+  return s;
+}
+
+struct Csv {
+  std::ofstream out;
+  // Writes one method's row; `reference` is the CPU BVH's result on the same rays.
+  void row(const char* set, int level, std::size_t triangles, const Result& r, const Result& reference) {
+    std::size_t checked = 0, hits = 0, differing = 0;
+    double sum_t = 0.0;
+    auto visit = [&](std::size_t i) {
+      checked++;
+      if (!std::isinf(r.t[i])) hits++, sum_t += r.t[i];
+      if (&r != &reference && differs(r.t[i], reference.t[i])) differing++;
+    };
+    if (r.measured) {
+      if (r.subset.empty()) {
+        for (std::size_t i = 0; i < r.t.size(); i++) visit(i);
+      } else {
+        for (std::size_t i : r.subset) visit(i);
+      }
+    }
+    const unsigned threads = r.method == "bvh_gpu" ? 0u : cores();
+    out << set << "," << level << "," << triangles << "," << r.method << ",\"" << r.device << "\","
+        << (threads ? std::to_string(threads) : "") << ",";
+    if (r.measured) {
+      out << r.rays << "," << r.passes << "," << double(r.rays) / r.wall / 1e6 << ","
+          << double(r.rays) / r.cpu * cores() / 1e6 << "," << checked << "," << hits << ","
+          << (hits ? fixed(sum_t / double(hits), 7) : "") << "," << differing;
+    } else {
+      out << ",,,,,,,";
+    }
+    out << ",\"" << r.note << "\"\n";
+    std::printf("  %-7s %-8s %9s M rays/s (by CPU time %9s)  hits %zu/%zu, mean t %s, %zu differ from bvh_cpu%s%s\n",
+                set, r.method.c_str(), r.measured ? fixed(double(r.rays) / r.wall / 1e6, 4).c_str() : "-",
+                r.measured ? fixed(double(r.rays) / r.cpu * cores() / 1e6, 4).c_str() : "-", hits, checked,
+                hits ? fixed(sum_t / double(hits), 6).c_str() : "-", differing, r.note.empty() ? "" : "; ",
+                r.note.c_str());
+  }
+};
+
+// The build of the largest scene, three times each: build_bvh, Embree's high-quality
+// build on all cores and on one.
+void compare_builds(const Scene& scene, const Config& config) {
+  std::ofstream csv = open_csv(config, "accel_build.csv");
+  csv << "method,triangles,threads,best_s,runs_s,bytes_per_triangle,note\n";
+  const std::size_t n = scene.triangles.size();
+  std::printf("== build of %zu triangles (best of 3)\n", n);
+  auto line = [&](const char* method, unsigned threads, const std::vector<double>& runs, double bytes_per_tri,
+                  const std::string& note) {
+    std::ostringstream all;
+    for (double s : runs) all << (all.tellp() > 0 ? " " : "") << fixed(s, 4);
+    const double best = *std::min_element(runs.begin(), runs.end());
+    csv << method << "," << n << "," << threads << "," << best << "," << all.str() << "," << bytes_per_tri << ",\""
+        << note << "\"\n";
+    std::printf("  %-18s %u thread(s): %.3f s (%s), %.1f B/triangle; %s\n", method, threads, best, all.str().c_str(),
+                bytes_per_tri, note.c_str());
+  };
+  std::vector<double> ours;
+  double ours_bytes = 0.0;
+  std::size_t nodes = 0;
+  for (int i = 0; i < 3; i++) {
+    Bvh bvh = build_bvh(scene.triangles);
+    ours.push_back(bvh.stats.build_seconds), ours_bytes = bvh.stats.bytes_per_triangle(), nodes = bvh.nodes.size();
+  }
+  line("bvh_build", 1, ours, ours_bytes,
+       std::to_string(nodes) + " nodes of 32 B and a 4-byte index per triangle; the kernels also read the 48-byte "
+       "triangles");
+  if (!EmbreeScene::available()) {
+    csv << "embree_hq,," << cores() << ",,,,\"" << EmbreeScene::missing_reason() << "\"\n";
+    return;
+  }
+  for (unsigned threads : {cores(), 1u}) {
+    std::vector<double> runs, commits;
+    double bytes = 0.0;
+    for (int i = 0; i < 3; i++) {
+      EmbreeScene e(scene.triangles, threads);
+      runs.push_back(e.build_seconds()), commits.push_back(e.commit_seconds());
+      bytes = double(e.bytes()) / double(n);
+    }
+    line(threads == 1 && cores() > 1 ? "embree_hq_1thread" : "embree_hq", threads, runs, bytes,
+         "rtcNewScene to rtcCommitScene, RTC_BUILD_QUALITY_HIGH (commit alone: best " +
+             fixed(*std::min_element(commits.begin(), commits.end()), 4) +
+             " s); bytes: what the commit kept (its BVH holds its own copy of the vertices)");
+    if (cores() == 1) break;
+  }
+}
+
+}  // namespace
+
+void run_accel(const Config& config) {
+  const std::string load_before = load_average();
+  const Clock::time_point start = Clock::now();
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  if (!EmbreeScene::available()) std::printf("embree: %s; the Embree column stays empty\n", EmbreeScene::missing_reason().c_str());
+  std::optional<GpuBvhTracer> gpu;
+  try {
+    gpu.emplace();
+  } catch (const Error& e) {
+    std::printf("gpu: %s (no GPU column)\n", e.what());
+  }
+  const RaySet camera = camera_rays(accel_camera(), config.accel_size, config.seed);
+  Csv csv{open_csv(config, "accel.csv")};
+  csv.out << "rays,level,triangles,method,device,threads,rays_timed,passes,mrays_per_s,mrays_per_cpu_s,rays_checked,"
+             "hits,mean_t,rays_differing_from_bvh_cpu,note\n";
+  std::vector<int> levels{-1};
+  for (int l = 1; l <= config.accel_max_level; l++) levels.push_back(l);
+  double brute_tests_per_s[2] = {0.0, 0.0};  // triangle tests per second of the last brute force, per set
+  const std::string cpu_device = std::to_string(cores()) + " threads";
+  for (int level : levels) {
+    Scene scene = accel_scene(level);
+    const std::size_t n = scene.triangles.size();
+    Bvh bvh = build_bvh(scene.triangles);
+    bind_cpu_scene(scene, &bvh, nullptr, 0);
+    const RaySet bounce = bounce_rays(camera, config.seed + 1u + uint(level + 1));
+    std::printf("== %s: %zu triangles, BVH %s; %zu camera rays, %zu bounce rays\n", accel_scene_name(level).c_str(),
+                n, bvh.stats.summary().c_str(), camera.size(), bounce.size());
+    std::optional<EmbreeScene> embree;
+    if (EmbreeScene::available()) embree.emplace(scene.triangles, cores());
+    std::optional<TriangleSoa> soa;
+    for (int set = 0; set < 2; set++) {
+      const RaySet& rays = set == 0 ? camera : bounce;
+      const char* set_name = set == 0 ? "camera" : "bounce";
+      Result bvh_cpu{"bvh_cpu", cpu_device}, brute{"brute_cpu", cpu_device}, emb{"embree", cpu_device},
+          bvh_gpu{"bvh_gpu", gpu ? gpu->device() : ""};
+      auto trace = [&](const std::size_t* index, std::size_t a, std::size_t b, float* t) { trace_cpu(rays, index, a, b, t); };
+      bvh_cpu.pass = cpu_pass(bvh_cpu, rays, [&] { bind_cpu_scene(scene, &bvh, nullptr, 0), set_cpu_accel(true); }, trace);
+      std::vector<Result*> racers{&bvh_cpu};
+      if (embree) {
+        emb.device = EmbreeScene::version() + ", " + cpu_device;
+        emb.pass = cpu_pass(emb, rays, [] {}, [&](const std::size_t*, std::size_t a, std::size_t b, float* t) {
+          embree->trace(rays, a, b - a, t);
+        });
+        racers.push_back(&emb);
+      } else {
+        emb.note = EmbreeScene::missing_reason();
+      }
+      if (gpu) {
+        try {
+          gpu->set_scene(scene, bvh, rays);
+          bvh_gpu.pass = [&](bool) {
+            gpu->run();
+            bvh_gpu.wall = gpu->wall(), bvh_gpu.cpu = gpu->cpu(), bvh_gpu.passes = gpu->runs();
+            bvh_gpu.rays = bvh_gpu.passes * rays.size();
+          };
+          racers.push_back(&bvh_gpu);
+        } catch (const Error& e) {
+          bvh_gpu.note = e.what();
+        }
+      } else {
+        bvh_gpu.note = "no Vulkan device";
+      }
+      // The brute force: all the rays when a pass is short, else an even sample of them
+      // (every k-th), or none when even kMinBruteRays would take too long.
+      const double predicted = brute_tests_per_s[set] > 0.0 ? brute_tests_per_s[set] / double(n) : 0.0;
+      const bool full = predicted == 0.0 || double(rays.size()) / predicted <= config.accel_seconds;
+      std::size_t sample = rays.size();
+      if (!full) {
+        sample = std::min(rays.size(), std::max(kMinBruteRays, std::size_t(predicted * config.accel_seconds)));
+        const double expected = double(sample) / predicted;
+        if (expected > config.accel_brute_limit) {
+          sample = 0;
+          brute.note = "skipped: " + std::to_string(kMinBruteRays) + " rays would take about " + fixed(expected, 1) +
+                       " s (limit " + fixed(config.accel_brute_limit, 1) + " s)";
+        } else {
+          for (std::size_t k = 0; k < sample; k++) brute.subset.push_back(k * rays.size() / sample);
+          brute.note = std::to_string(sample) + " of the " + std::to_string(rays.size()) +
+                       " rays, evenly spaced, one pass";
+        }
+      }
+      if (sample > 0) {
+        if (!soa) soa.emplace(scene.triangles);
+        brute.pass = cpu_pass(brute, rays, [&] { bind_cpu_scene(scene, nullptr, &soa->data, soa->stride), set_cpu_accel(false); },
+                              trace);
+        if (full) racers.push_back(&brute);
+      }
+      race(racers, config.accel_seconds);
+      if (sample > 0 && !full) brute.pass(true);
+      for (Result* r : {&bvh_cpu, &emb, &bvh_gpu, &brute}) r->measured = r->passes > 0;
+      if (bvh_gpu.measured) bvh_gpu.t = gpu->distances();
+      if (brute.measured) brute_tests_per_s[set] = double(brute.rays) / brute.wall * double(n);
+      bind_cpu_scene(scene, &bvh, nullptr, 0);
+      for (Result* r : {&brute, &bvh_cpu, &bvh_gpu, &emb}) csv.row(set_name, level, n, *r, bvh_cpu);
+    }
+    if (level == levels.back()) {
+      embree.reset();
+      soa.reset();
+      bvh = Bvh{};
+      compare_builds(scene, config);
+    }
+  }
+  std::ofstream run = open_csv(config, "accel_run.txt");
+  run << "date: " << date << "\ncommand: " << config.command << "\nload_before: " << load_before
+      << "\nload_after: " << load_average() << "\nseconds: " << fixed(seconds_since(start), 0)
+      << "\nthreads: " << cores() << "\nseconds_per_method: " << config.accel_seconds << "\ncamera_rays: " << camera.size() << " (" << config.accel_size << "x"
+      << config.accel_size << ", one random point in each pixel)\ngpu: " << (gpu ? gpu->device() : "none")
+      << "\nembree: " << (EmbreeScene::available() ? EmbreeScene::version() : EmbreeScene::missing_reason()) << "\n";
+  std::printf("accel: wrote %s/accel.csv, accel_build.csv and accel_run.txt\n", config.out_dir.c_str());
+}
+
+}  // namespace pt::bench

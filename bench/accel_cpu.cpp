@@ -1,0 +1,105 @@
+// pt_bench's acceleration section on the CPU (accel.h): the renderer's own nearest-hit
+// search, common/kernel/intersect.glsl and common/kernel/bvh.glsl compiled as C++ exactly
+// as a stage's CPU kernel includes them (cpu/kernel_support.h: the BVH walk, or the brute
+// force on SIMD lanes of cpu/triangle_lanes.h, by params.accel), and the two ray sets:
+// camera rays (common/kernel/camera.glsl) and diffuse bounce rays from their hits, spawned
+// by common/kernel/spawn.glsl.
+#include <cmath>
+#include <random>
+
+#include "bench/accel.h"
+#include "cpu/kernel_prelude.h"
+
+namespace {
+namespace kernel {  // the renderer's intersection code, as a CPU kernel compiles it
+#include "cpu/kernel_begin.h"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "common/kernel/spawn.glsl"
+#include "cpu/kernel_support.h"
+}  // namespace kernel
+}  // namespace
+
+namespace pt::bench {
+
+void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>* soa, uint soa_stride) {
+  kernel::triangles = scene.triangles.data();
+  kernel::spheres = scene.spheres.data();
+  kernel::params = FrameParams{};
+  kernel::params.triangle_count = uint(scene.triangles.size());
+  kernel::params.sphere_count = uint(scene.spheres.size());
+  Bounds b = scene.bounds();  // as render.cpp sets it: the spawn offset scales with it
+  kernel::params.scene_radius = b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f);
+  const bool has_bvh = bvh && !bvh->nodes.empty();
+  kernel::bvh_nodes = has_bvh ? bvh->nodes.data() : nullptr;
+  kernel::bvh_indices = has_bvh ? bvh->indices.data() : nullptr;
+  kernel::triangle_soa = soa ? soa->data() : nullptr;
+  kernel::triangle_soa_stride = soa ? soa_stride : 0u;
+}
+
+namespace {
+
+// The renderer's search for one ray: nearest_triangle() of cpu/triangle_lanes.h, which
+// walks the BVH when params.accel says so and one was bound, else the SIMD brute force.
+kernel::Hit nearest(glm::vec3 origin, glm::vec3 dir) {
+  kernel::Ray ray(origin, dir);
+  return kernel::nearest_triangle(ray, kernel::make_ray_shear(dir),
+                                  kernel::Hit(kernel::kInfinity, 0.0f, 0.0f, 0u, kPrimNone));
+}
+
+}  // namespace
+
+void set_cpu_accel(bool bvh) {
+  kernel::params.accel = bvh ? kAccelBvh : kAccelNone;
+}
+
+void trace_cpu(const RaySet& rays, const std::size_t* index, std::size_t first, std::size_t last, float* t_out) {
+  for (std::size_t k = first; k < last; k++) {
+    const std::size_t i = index ? index[k] : k;
+    kernel::Hit h = nearest(rays.origins[i], rays.dirs[i]);
+    t_out[i] = h.kind == kPrimNone ? kMiss : h.t;
+  }
+}
+
+RaySet camera_rays(const Camera& camera, int size, std::uint32_t seed) {
+  RaySet r;
+  const std::size_t n = std::size_t(size) * std::size_t(size);
+  r.origins.reserve(n), r.dirs.reserve(n);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int y = 0; y < size; y++) {
+    for (int x = 0; x < size; x++) {
+      glm::vec2 film((float(x) + u(rng)) / float(size), (float(y) + u(rng)) / float(size));
+      kernel::Ray ray = kernel::camera_ray(camera, film);
+      r.origins.push_back(ray.origin), r.dirs.push_back(ray.dir);
+    }
+  }
+  return r;
+}
+
+RaySet bounce_rays(const RaySet& camera, std::uint32_t seed) {
+  RaySet r;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  kernel::params.accel = kernel::bvh_nodes ? kAccelBvh : kAccelNone;
+  for (std::size_t i = 0; i < camera.size(); i++) {
+    const float u1 = u(rng), u2 = u(rng);  // drawn for every ray: the same numbers per pixel
+    kernel::Ray in(camera.origins[i], camera.dirs[i]);
+    kernel::Hit hit = nearest(in.origin, in.dir);
+    if (hit.kind == kPrimNone) continue;
+    kernel::Surface s = kernel::surface_at(in, hit);
+    const glm::vec3 n = s.front ? s.n : -s.n;  // the side the camera ray came from
+    // Cosine-distributed about n (Malley: a uniform point of the disc, lifted to the
+    // hemisphere), in a basis around n.
+    const float radius = std::sqrt(u1), phi = 6.2831853f * u2;
+    const glm::vec3 helper = std::fabs(n.x) > 0.5f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 tx = glm::normalize(glm::cross(helper, n)), ty = glm::cross(n, tx);
+    const glm::vec3 dir = glm::normalize(radius * std::cos(phi) * tx + radius * std::sin(phi) * ty +
+                                         std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
+    kernel::Ray out = kernel::spawn_ray(s.p, s.n, dir);
+    r.origins.push_back(out.origin), r.dirs.push_back(out.dir);
+  }
+  return r;
+}
+
+}  // namespace pt::bench
