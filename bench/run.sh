@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# The whole speed-versus-accuracy lab (issue 6): pt_bench's three sections into CSV files
-# in docs/results/, then the log-log plots of error against time and docs/results.md
-# (bench/report.py). Run by `./tutorial bench` after the build; about 15 minutes on 2 cores.
+# The whole speed-versus-accuracy lab (issue 6): pt_bench's four sections into CSV files
+# in docs/results/ (error against time, rays per second, specialised kernels, and rays per
+# second against the triangle count with the BVH and Embree, issue 17), then the log-log
+# plots and docs/results.md (bench/report.py). Run by `./tutorial bench` after the build;
+# about 18 minutes on 2 cores.
 # Environment: BUILD_DIR (default build); PT_BENCH_ARGS: more pt_bench options (e.g.
 # "--scene cornell --seconds 1" for a quick look).
 set -euo pipefail
@@ -13,6 +15,7 @@ COMMAND="$BUILD_DIR/bin/pt_bench --runs bench/runs.txt --out $OUT --cache $BUILD
 echo "bench: $COMMAND" >&2
 # The load of the machine before and after: other jobs on the same cores slow every number.
 cut -d' ' -f1-3 /proc/loadavg > "$OUT/load_before.txt"
+date -u +%Y-%m-%d > "$OUT/bench_date.txt"
 start=$(date +%s)
 # shellcheck disable=SC2086
 $COMMAND
