@@ -70,7 +70,7 @@ class GpuBackend : public Backend {
     one_sample_ = false;  // a new scene may fit the loop budget again
     // Only what the kernel specialised to `features` reads is uploaded.
     bool spheres = (features & kFeatureSpheres) != 0u, lights = kernels_.uses_light_table;
-    upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
+    upload(triangles_, scene.triangles.data(), scene.triangles.size() * sizeof(Triangle), "the scene's triangles need");
     // The triangles again as a uniform buffer if they fit (gpu/kernel_bindings.glsl: triangle_at).
     UniformTriangles uniform = uniform_triangles(context_, scene.triangles);
     uniform_triangles_ = std::move(uniform.buffer);
@@ -80,8 +80,10 @@ class GpuBackend : public Backend {
     upload(lights_, scene.lights.data(), lights ? scene.lights.size() * sizeof(Light) : 0);
     // The BVH, or placeholders when the render searches every triangle (params.accel).
     const bool has_bvh = bvh && !bvh->nodes.empty();
-    upload(bvh_nodes_, has_bvh ? bvh->nodes.data() : nullptr, has_bvh ? bvh->nodes.size() * sizeof(BvhNode) : 0);
-    upload(bvh_indices_, has_bvh ? bvh->indices.data() : nullptr, has_bvh ? bvh->indices.size() * sizeof(uint) : 0);
+    upload(bvh_nodes_, has_bvh ? bvh->nodes.data() : nullptr, has_bvh ? bvh->nodes.size() * sizeof(BvhNode) : 0,
+           "the BVH's nodes need");
+    upload(bvh_indices_, has_bvh ? bvh->indices.data() : nullptr, has_bvh ? bvh->indices.size() * sizeof(uint) : 0,
+           "the BVH's triangle list needs");
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
     // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
     std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
@@ -166,15 +168,15 @@ class GpuBackend : public Backend {
 
 
   // Storage buffers never have size 0: an empty array still gets a small buffer.
-  void upload(Buffer& buffer, const void* data, std::size_t bytes) {
-    check_range(bytes, "the scene");
+  void upload(Buffer& buffer, const void* data, std::size_t bytes, const char* what = "the scene needs") {
+    check_range(bytes, what);
     buffer = Buffer(context_, std::max<std::size_t>(bytes, 64), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     if (bytes) buffer.write(data, bytes);
   }
 
   void ensure_output(VkDeviceSize bytes) {
     if (output_.size() == bytes) return;
-    check_range(bytes, "the image");
+    check_range(bytes, "the image needs");
     output_ = Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   }
 
@@ -183,13 +185,13 @@ class GpuBackend : public Backend {
   void check_range(VkDeviceSize bytes, const char* what) const {
     VkDeviceSize limit = context_.properties().limits.maxStorageBufferRange;
     if (bytes > limit) {
-      throw Error(kExitNoDevice, std::string(what) + " needs a " + megabytes(bytes) + " (" + std::to_string(bytes) +
+      throw Error(kExitNoDevice, std::string(what) + " a " + megabytes(bytes) + " (" + std::to_string(bytes) +
                                      " bytes) buffer but device '" + context_.device_name() + "' allows " +
                                      megabytes(limit) + " (" + std::to_string(limit) +
                                      " bytes); render a smaller image or scene, or use --backend cpu");
     }
     if (bytes > context_.heap_size()) {
-      throw Error(kExitNoDevice, std::string(what) + " needs " + megabytes(bytes) + " of memory but device '" +
+      throw Error(kExitNoDevice, std::string(what) + " " + megabytes(bytes) + " of memory but device '" +
                                      context_.device_name() + "' has " + megabytes(context_.heap_size()) +
                                      "; render a smaller image or scene, or use --backend cpu");
     }

@@ -40,11 +40,6 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
   }
   if (c.zero_pdf) s += ", " + std::to_string(c.zero_pdf) + " paths ended by a zero pdf";
   if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
-  if (c.loop_limit) {
-    s += ", WRONG IMAGE: the Vulkan driver cut the loops of " + std::to_string(c.loop_limit) +
-         " pixel passes short (lavapipe stops a kernel after 65535 loop iterations; fewer triangles, "
-         "a lower albedo or --backend cpu)";
-  }
   if (!tags.empty()) s += " " + tags;
   if (r.bvh) s += " " + r.bvh->summary();
   return s;

@@ -49,7 +49,6 @@ void RenderCounters::add(const PassResult& pass) {
   depth_cap += pass.counters[kCounterDepthCap];
   zero_pdf += pass.counters[kCounterZeroPdf];
   non_finite += pass.counters[kCounterNonFinite];
-  loop_limit += pass.counters[kCounterLoopLimit];
   first_non_finite_pixel = std::min(first_non_finite_pixel, pass.counters[kCounterNonFinitePixel]);
 }
 
@@ -81,14 +80,13 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
   bool shown = false;
   Clock::time_point start = Clock::now(), saved = start;
   std::uint64_t done = result.film.spp();
-  // The BVH, once per render: built here from the scene, read by the backend's passes.
-  std::optional<Bvh> bvh;
-  if (params.accel == kAccelBvh) {
-    bvh = build_bvh(scene.triangles);
-    result.bvh = bvh->stats;
-  }
+  // The BVH: the caller's, or built here from the scene; read by the backend's passes.
+  std::optional<Bvh> built;
+  const Bvh* bvh = params.accel == kAccelBvh ? h.bvh : nullptr;
+  if (params.accel == kAccelBvh && !bvh) bvh = &built.emplace(build_bvh(scene.triangles));
+  if (bvh) result.bvh = bvh->stats;
   try {
-    backend.set_scene(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky), bvh ? &*bvh : nullptr);
+    backend.set_scene(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky), bvh);
   } catch (const Error& e) {  // a device that cannot hold the scene: nothing rendered yet
     if (e.code() != kExitNoDevice) throw;
     result.device_error = e.what();
@@ -104,6 +102,16 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
     } catch (const Error& e) {  // a lost device: keep the samples done so far
       if (e.code() != kExitNoDevice) throw;
       result.device_error = e.what();
+      if (h.save && done > 0) h.save(result);
+      break;
+    }
+    if (uint cut = pass_result.counters[kCounterLoopLimit]) {
+      // The driver ended the loops of `cut` pixels early even at one sample per invocation
+      // (gpu/kernel_main.glsl): a wrong pass, never added to the film.
+      result.device_error = "the Vulkan driver cut the loops of " + std::to_string(cut) +
+                            " pixels short (lavapipe ends an invocation after 65535 loop iterations), so pass " +
+                            std::to_string(index + 1) + " would be a wrong image; use --backend cpu, a lower albedo " +
+                            "or fewer triangles";
       if (h.save && done > 0) h.save(result);
       break;
     }

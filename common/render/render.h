@@ -47,6 +47,9 @@ struct RenderHooks {
   const struct RenderResult* resume = nullptr;
   std::function<void(const struct RenderResult&)> save;
   double save_seconds = 0.0;
+  // A BVH already built over the scene's triangles (build_bvh): used instead of building
+  // one, so that a render continued on another backend, or rendered again, builds it once.
+  const Bvh* bvh = nullptr;
 };
 
 // "No pixel" in kCounterNonFinitePixel.
@@ -58,7 +61,6 @@ struct RenderCounters {
   std::uint64_t zero_pdf = 0;    // paths ended by a zero pdf or a non-finite weight
   std::uint64_t non_finite = 0;  // NaN or infinite samples dropped
   std::uint32_t first_non_finite_pixel = kNoPixel;
-  std::uint64_t loop_limit = 0;  // pixel passes the Vulkan driver cut short (gpu/kernel_main.glsl)
   void add(const PassResult& pass);
 };
 
@@ -68,9 +70,10 @@ struct RenderResult {
   double kernel_seconds = 0.0;  // time the kernels ran (GPU: timestamp queries)
   RenderCounters counters;
   std::uint64_t passes = 0;  // passes done: the next pass's place in the schedule
-  std::string device_error;  // set when the backend failed (exit 4): the film has the
-                             // samples done before it
-  std::optional<BvhStats> bvh;  // the BVH this render built (none: --accel none or no triangles)
+  std::string device_error;  // set when the backend failed (exit 4), or when the Vulkan
+                             // driver cut a pass short (a wrong pass is never added): the
+                             // film has the samples done before it
+  std::optional<BvhStats> bvh;  // the BVH this render searched (none: --accel none or no triangles)
 };
 
 // Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's
