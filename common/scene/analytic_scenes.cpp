@@ -30,6 +30,17 @@ Scene make_furnace_sphere(const FurnaceSphereScene& f) {
   return s;
 }
 
+Scene make_furnace_mesh(const FurnaceMeshScene& f) {
+  Scene s;
+  uint wall = s.add_material(make_diffuse(glm::vec3(f.albedo), glm::vec3(f.emission), true));
+  add_icosphere(s, glm::vec3(0.0f), f.radius, f.n, wall, true);
+  CameraDesc cam;
+  cam.yfov = 1.2f;
+  s.camera = cam;  // at the centre, looking down -Z
+  build_light_table(s);
+  return s;
+}
+
 Scene make_floor_light(const FloorLightScene& a) {
   Scene s;
   uint floor = s.add_material(make_diffuse(glm::vec3(a.albedo)));

@@ -42,6 +42,17 @@ struct FurnaceSphereScene {
   float albedo = 0.5f;
 };
 
+// builtin:furnace_mesh — the furnace of FurnaceSphereScene as a mesh: the inside of an
+// icosphere of 20 n^2 triangles (add_icosphere; n = 256: 1,310,720), each emitting Le on
+// both sides and reflecting with albedo rho. Any closed surface gives Le / (1 - rho) inside,
+// whatever its tessellation, so the image is known through a BVH of a million triangles.
+struct FurnaceMeshScene {
+  int n = 256;
+  float radius = 1.0f;
+  float emission = 1.0f;
+  float albedo = 0.5f;
+};
+
 // builtin:floor_light — a diffuse floor (y = 0) under a square emitter facing down, seen
 // from below the emitter by an orthographic camera looking straight down. The emitter is
 // black, the floor flat: light reaches the floor once, and each point's radiance is
@@ -103,6 +114,7 @@ Scene make_mirror(const MirrorScene& a);
 Scene make_glass_slab(const GlassSlabScene& a);
 Scene make_furnace(const FurnaceScene& a);
 Scene make_furnace_sphere(const FurnaceSphereScene& a);
+Scene make_furnace_mesh(const FurnaceMeshScene& a);
 Scene make_sphere(const SphereScene& a);
 Scene make_point_floor(const PointFloorScene& a);
 Scene make_point_in_sphere(const PointInSphereScene& a);

@@ -132,6 +132,8 @@ const std::vector<Builtin>& registry() {
        [] { return analytic::make_furnace({}); }},
       {{"furnace_sphere", "camera inside an emitting sphere (albedo 0.5, Le 1, double-sided): 2"},
        [] { return analytic::make_furnace_sphere({}); }},
+      {{"furnace_mesh", "camera inside an icosphere of 1.3 M triangles that emit 1 with albedo 0.5: 2"},
+       [] { return analytic::make_furnace_mesh({}); }},
       {{"sphere", "a diffuse sphere of radius 1 at distance 4 before a perspective camera"},
        [] { return analytic::make_sphere({}); }},
       {{"quad", "a square turned by 0.5 rad under an orthographic camera"}, [] { return analytic::make_quad({}); }},

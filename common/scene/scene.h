@@ -55,6 +55,11 @@ struct Scene {
 void add_quad(Scene& s, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, uint material);
 void add_box(Scene& s, glm::vec3 center, glm::vec3 half, float angle, uint material);
 void add_room(Scene& s, float h, uint floor, uint ceiling, uint back, uint left, uint right, int front);
+// A sphere tessellated as an icosahedron whose 20 faces are each cut into n x n triangles
+// (20 n^2 in all) with their corners pushed out to the sphere; faces outwards, or inwards
+// when `inward`. Watertight: a vertex on an edge two faces share is the same float triple
+// in both, so a ray cannot slip between them.
+void add_icosphere(Scene& s, glm::vec3 center, float radius, int n, uint material, bool inward = false);
 
 // Orthographic cameras of half-extent `half`: looking straight down (-y, image up = -z)
 // from `position`, or looking down -z from (0, 0, z).

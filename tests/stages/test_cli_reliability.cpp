@@ -218,6 +218,19 @@ TEST_CASE("cli: a device whose limits cannot hold the image is refused before al
   CHECK(r.out.find("backend gpu") != std::string::npos);
 }
 
+TEST_CASE("cli: a scene larger than the device's storage-buffer range is refused with exit 4 and the numbers",
+          "[reliability][devices][bvh]") {
+  if (!have_vulkan_device()) SUCCEED("no Vulkan device here: nothing to test");
+  if (!have_vulkan_device()) return;
+  // builtin:furnace_mesh: 1,310,720 triangles of 48 bytes; small_limits allows 65536 bytes.
+  Run r = run("--backend gpu --scene builtin:furnace_mesh --width 4 --height 4 --out " + path("mesh.png"),
+              "PT_FAULT=small_limits");
+  check_error(r, 4, "the scene's triangles need");
+  CHECK(r.err.find("62914560 bytes") != std::string::npos);
+  CHECK(r.err.find("65536 bytes") != std::string::npos);
+  CHECK(!fs::exists(path("mesh.png")));
+}
+
 TEST_CASE("cli: a device lost mid-render is not retried: gpu writes the samples done and exits 4, auto finishes "
           "on the CPU",
           "[reliability][devices]") {

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <optional>
 
 #include "tests/support/statistics.h"
 #include "tests/support/test_render.h"
@@ -114,10 +115,14 @@ double channel_means_ratio(const std::vector<Film>& batches, const ExpectedImage
 }
 
 std::vector<Film> render_batches(const StageKernels& kernels, const Scene& scene, RenderSettings settings,
-                                 int batches) {
+                                 int batches, const Bvh* bvh) {
   std::vector<Film> films;
   std::unique_ptr<Backend> backend = make_backend(backend_under_test, kernels);
-  for (int i = 0; i < batches; i++, settings.seed++) films.push_back(render(*backend, scene, settings).film);
+  RenderHooks hooks;  // one BVH for all the batches, as a stage's render_frame() builds one
+  hooks.bvh = bvh;
+  std::optional<Bvh> built;
+  if (!bvh && settings.accel == kAccelBvh && !scene.triangles.empty()) hooks.bvh = &built.emplace(build_bvh(scene.triangles));
+  for (int i = 0; i < batches; i++, settings.seed++) films.push_back(render(*backend, scene, settings, hooks).film);
   return films;
 }
 

@@ -41,9 +41,10 @@ PixelReport check_pixels(const Film& film, const ExpectedImage& expected, double
 // Returns the largest |t| divided by its critical value (<= 1 passes).
 double channel_means_ratio(const std::vector<Film>& batches, const ExpectedImage& expected, double alpha = 1e-3);
 
-// Renders `batches` films of settings.spp each with seeds seed, seed + 1, ...
+// Renders `batches` films of settings.spp each with seeds seed, seed + 1, ..., on the
+// backend under test; `bvh`: the scene's BVH built already (else built once here).
 std::vector<Film> render_batches(const StageKernels& kernels, const Scene& scene, RenderSettings settings,
-                                 int batches);
+                                 int batches, const Bvh* bvh = nullptr);
 
 // Expected image from a function of the pixel's screen rectangle [x0,x1] x [y0,y1] in
 // [-1, 1] screen coordinates (y up): the function averages over the rectangle itself.
