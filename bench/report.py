@@ -195,7 +195,7 @@ def accel_section(rows, builds, run, out_dir):
           "rays: the brute force is the renderer's `--accel none` search (cpu/triangle_lanes.h), the BVH is "
           "common/kernel/bvh.glsl's nearest-hit walk, compiled as C++ on the CPU and run by intersect_raycast.comp "
           "on the GPU backend, Embree is `rtcIntersect1` one ray at a time on a high-quality build. The CPU methods "
-          "run on all cores, and the methods take turns (at least %s s each) so that they share the same load. "
+          "run on all cores, and the methods take turns (at least %s s and 3 passes each) so that they share the same load. "
           "\u2020: the brute force timed on an even sample of the rays (accel.csv says how many); skipped: even "
           "2048 rays would have taken longer than the limit." % (
               run.get("camera_rays", "?"), run.get("seconds_per_method", "?")), "",
@@ -221,10 +221,15 @@ def accel_section(rows, builds, run, out_dir):
                 "%.1f" % num(r["bytes_per_triangle"]) if num(r["bytes_per_triangle"]) else "-", r["note"]))
         md.append("")
 
-    def met(value, target, above):
+    def met(value, target, above, by_cpu=None):
+        """The verdict by the wall clock, and by CPU time where given: on a shared machine
+        the two can fall on either side of the target, and then the page says so."""
         if value is None:
             return "not measured"
-        return "**met**" if (value >= target if above else value <= target) else "**missed**"
+        ok = value >= target if above else value <= target
+        if by_cpu is None or (by_cpu >= target if above else by_cpu <= target) == ok:
+            return "**met**" if ok else "**missed**"
+        return "**%s** by the wall clock, **%s** by CPU time" % (("met", "missed") if ok else ("missed", "met"))
 
     md += ["Targets of issue 17 against this run (ratios by the wall clock; by CPU time in parentheses):", "",
            "| target | measured | |", "|---|---|---|"]
@@ -233,7 +238,8 @@ def accel_section(rows, builds, run, out_dir):
         ec, cc = rate(rays, top, "embree", "mrays_per_cpu_s"), rate(rays, top, "bvh_cpu", "mrays_per_cpu_s")
         v = c / e if c and e else None
         md.append("| CPU BVH \u2265 %.1f\u00d7 Embree, %s rays, %d triangles | %s (%s) | %s |" % (
-            ACCEL_TARGET_EMBREE, rays, top, ratio(c, e), ratio(cc, ec), met(v, ACCEL_TARGET_EMBREE, True)))
+            ACCEL_TARGET_EMBREE, rays, top, ratio(c, e), ratio(cc, ec),
+            met(v, ACCEL_TARGET_EMBREE, True, cc / ec if cc and ec else None)))
     for rays in ("camera", "bounce"):
         g, c = rate(rays, top, "bvh_gpu"), rate(rays, top, "bvh_cpu")
         gc, cc = rate(rays, top, "bvh_gpu", "mrays_per_cpu_s"), rate(rays, top, "bvh_cpu", "mrays_per_cpu_s")
@@ -242,7 +248,8 @@ def accel_section(rows, builds, run, out_dir):
         v = g / c if g and c else None
         md.append("| GPU backend (%s) BVH \u2265 %.1f\u00d7 CPU BVH, %s rays, %d triangles | %s (%s); %s over all counts | %s |" % (
             gpu, ACCEL_TARGET_GPU, rays, top, ratio(g, c), ratio(gc, cc),
-            "%.2f to %.2f" % (min(all_ratios), max(all_ratios)) if all_ratios else "-", met(v, ACCEL_TARGET_GPU, True)))
+            "%.2f to %.2f" % (min(all_ratios), max(all_ratios)) if all_ratios else "-",
+            met(v, ACCEL_TARGET_GPU, True, gc / cc if gc and cc else None)))
     # Against the faster of Embree's builds (all cores or one): the stricter comparison.
     ours = b.get("bvh_build")
     o = num(ours["best_s"]) if ours else None
