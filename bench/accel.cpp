@@ -4,8 +4,9 @@
 // the same run: the brute force (the article's search, Eq. 2, as the CPU kernel compiles
 // it), the BVH on the CPU and on the GPU backend, and Embree 3. The CPU methods run on
 // all cores, alternating, so that they see the same load. Then the build of the largest
-// mesh: build_bvh against Embree's high-quality build. Writes docs/results/accel.csv,
-// accel_build.csv and accel_run.txt (the command, the date and the machine's load).
+// mesh: build_bvh against Embree's high-quality build (accel_build.cpp). Writes
+// docs/results/accel.csv, accel_build.csv and accel_run.txt (the command, the date and
+// the machine's load).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -26,15 +27,21 @@
 
 namespace pt::bench {
 
+unsigned cores() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+std::string fixed(double v, int digits) {
+  char s[64];
+  std::snprintf(s, sizeof s, "%.*f", digits, v);
+  return s;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kMinBruteRays = 2048;  // fewer would say little; skip the count instead
-
-unsigned cores() {
-  return std::max(1u, std::thread::hardware_concurrency());
-}
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -116,12 +123,6 @@ bool differs(float a, float b) {
   return std::fabs(a - b) > 1e-5f * std::max(a, b);
 }
 
-std::string fixed(double v, int digits) {
-  char s[64];
-  std::snprintf(s, sizeof s, "%.*f", digits, v);
-  return s;
-}
-
 struct Csv {
   std::ofstream out;
   // Writes one method's row; `reference` is the CPU BVH's result on the same rays.
@@ -159,53 +160,6 @@ struct Csv {
   }
 };
 
-// The build of the largest scene, three times each: build_bvh, Embree's high-quality
-// build on all cores and on one.
-void compare_builds(const Scene& scene, const Config& config) {
-  std::ofstream csv = open_csv(config, "accel_build.csv");
-  csv << "method,triangles,threads,best_s,runs_s,bytes_per_triangle,note\n";
-  const std::size_t n = scene.triangles.size();
-  std::printf("== build of %zu triangles (best of 3)\n", n);
-  auto line = [&](const char* method, unsigned threads, const std::vector<double>& runs, double bytes_per_tri,
-                  const std::string& note) {
-    std::ostringstream all;
-    for (double s : runs) all << (all.tellp() > 0 ? " " : "") << fixed(s, 4);
-    const double best = *std::min_element(runs.begin(), runs.end());
-    csv << method << "," << n << "," << threads << "," << best << "," << all.str() << "," << bytes_per_tri << ",\""
-        << note << "\"\n";
-    std::printf("  %-18s %u thread(s): %.3f s (%s), %.1f B/triangle; %s\n", method, threads, best, all.str().c_str(),
-                bytes_per_tri, note.c_str());
-  };
-  std::vector<double> ours;
-  double ours_bytes = 0.0;
-  std::size_t nodes = 0;
-  for (int i = 0; i < 3; i++) {
-    Bvh bvh = build_bvh(scene.triangles);
-    ours.push_back(bvh.stats.build_seconds), ours_bytes = bvh.stats.bytes_per_triangle(), nodes = bvh.nodes.size();
-  }
-  line("bvh_build", 1, ours, ours_bytes,
-       std::to_string(nodes) + " nodes of 32 B and a 4-byte index per triangle; the kernels also read the 48-byte "
-       "triangles");
-  if (!EmbreeScene::available()) {
-    csv << "embree_hq,," << cores() << ",,,,\"" << EmbreeScene::missing_reason() << "\"\n";
-    return;
-  }
-  for (unsigned threads : {cores(), 1u}) {
-    std::vector<double> runs, commits;
-    double bytes = 0.0;
-    for (int i = 0; i < 3; i++) {
-      EmbreeScene e(scene.triangles, threads);
-      runs.push_back(e.build_seconds()), commits.push_back(e.commit_seconds());
-      bytes = double(e.bytes()) / double(n);
-    }
-    line(threads == 1 && cores() > 1 ? "embree_hq_1thread" : "embree_hq", threads, runs, bytes,
-         "rtcNewScene to rtcCommitScene, RTC_BUILD_QUALITY_HIGH (commit alone: best " +
-             fixed(*std::min_element(commits.begin(), commits.end()), 4) +
-             " s); bytes: what the commit kept (its BVH holds its own copy of the vertices)");
-    if (cores() == 1) break;
-  }
-}
-
 }  // namespace
 
 void run_accel(const Config& config) {
@@ -233,10 +187,15 @@ void run_accel(const Config& config) {
     Scene scene = accel_scene(level);
     const std::size_t n = scene.triangles.size();
     Bvh bvh = build_bvh(scene.triangles);
-    bind_cpu_scene(scene, &bvh, nullptr, 0);
+    Clock::time_point wide_start = Clock::now();
+    const WideBvh wide = build_wide_bvh(bvh, scene.triangles);  // as the CPU backend's set_scene builds it
+    const double wide_seconds = seconds_since(wide_start);
+    bind_cpu_scene(scene, &bvh, nullptr, 0, &wide);
     const RaySet bounce = bounce_rays(camera, config.seed + 1u + uint(level + 1));
     std::printf("== %s: %zu triangles, BVH %s; %zu camera rays, %zu bounce rays\n", accel_scene_name(level).c_str(),
                 n, bvh.stats.summary().c_str(), camera.size(), bounce.size());
+    std::printf("   CPU's wide tree: %zu nodes, %zu leaf blocks, %.1f ms\n", wide.nodes.size(), wide.blocks.size(),
+                1e3 * wide_seconds);
     std::optional<EmbreeScene> embree;
     if (EmbreeScene::available()) embree.emplace(scene.triangles, cores());
     std::optional<TriangleSoa> soa;
@@ -246,7 +205,7 @@ void run_accel(const Config& config) {
       Result bvh_cpu{"bvh_cpu", cpu_device}, brute{"brute_cpu", cpu_device}, emb{"embree", cpu_device},
           bvh_gpu{"bvh_gpu", gpu ? gpu->device() : ""};
       auto trace = [&](const std::size_t* index, std::size_t a, std::size_t b, float* t) { trace_cpu(rays, index, a, b, t); };
-      bvh_cpu.pass = cpu_pass(bvh_cpu, rays, [&] { bind_cpu_scene(scene, &bvh, nullptr, 0), set_cpu_accel(true); }, trace);
+      bvh_cpu.pass = cpu_pass(bvh_cpu, rays, [&] { bind_cpu_scene(scene, &bvh, nullptr, 0, &wide), set_cpu_accel(true); }, trace);
       std::vector<Result*> racers{&bvh_cpu};
       if (embree) {
         emb.device = EmbreeScene::version() + ", " + cpu_device;
@@ -301,14 +260,14 @@ void run_accel(const Config& config) {
       for (Result* r : {&bvh_cpu, &emb, &bvh_gpu, &brute}) r->measured = r->passes > 0;
       if (bvh_gpu.measured) bvh_gpu.t = gpu->distances();
       if (brute.measured) brute_tests_per_s[set] = double(brute.rays) / brute.wall * double(n);
-      bind_cpu_scene(scene, &bvh, nullptr, 0);
+      bind_cpu_scene(scene, &bvh, nullptr, 0, &wide);
       for (Result* r : {&brute, &bvh_cpu, &bvh_gpu, &emb}) csv.row(set_name, level, n, *r, bvh_cpu);
     }
     if (level == levels.back()) {
       embree.reset();
       soa.reset();
       bvh = Bvh{};
-      compare_builds(scene, config);
+      compare_builds(scene, config);  // accel_build.cpp
     }
   }
   std::ofstream run = open_csv(config, "accel_run.txt");

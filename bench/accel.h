@@ -17,8 +17,19 @@
 #include "common/kernel/scene_types.h"
 #include "common/scene/bvh.h"
 #include "common/scene/scene.h"
+#include "cpu/wide_bvh.h"
 
 namespace pt::bench {
+
+struct Config;
+
+// The cores the CPU methods run on (all of them), and a number with `digits` decimals.
+unsigned cores();
+std::string fixed(double v, int digits);
+
+// The build of `scene` three times each by build_bvh and by Embree's high-quality build,
+// on all cores and on one: accel_build.csv and a table on stdout (accel_build.cpp).
+void compare_builds(const Scene& scene, const Config& config);
 
 // The measured scenes: level < 0 is builtin:cornell (36 triangles); level >= 0 the Cornell
 // room (its 12 triangles of walls and light) with an icosphere of 20 * 4^level triangles in
@@ -42,7 +53,10 @@ constexpr float kMiss = __builtin_inff();
 // compiled as C++ with cpu/triangle_lanes.h, as the stages' CPU kernels compile them.
 // Binds the scene to the kernel's globals: its BVH (nullptr: none) and its triangles as
 // arrays for the brute force's SIMD lanes (nullptr: none).
-void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>* soa, uint soa_stride);
+// wide: the same tree collapsed for the CPU backend's SIMD walk (cpu/wide_bvh.h), which the
+// search then takes instead of the binary walk, as the CPU backend does.
+void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>* soa, uint soa_stride,
+                    const WideBvh* wide = nullptr);
 // How trace_cpu() searches: through the BVH (--accel bvh) or by the brute force (--accel
 // none), as params.accel tells nearest_triangle(). Set before the threads start.
 void set_cpu_accel(bool bvh);
