@@ -137,7 +137,8 @@ SlurmUser=$user
 SlurmdUser=$user
 AuthType=auth/munge
 CredType=cred/munge
-AuthInfo=socket=$dir/munge.sock
+# cred_expire: a requeued job waits this long before it starts again (default 120 s).
+AuthInfo=socket=$dir/munge.sock,cred_expire=10
 SlurmctldPort=$port_ctld
 SlurmdPort=$port_d
 StateSaveLocation=$dir/state
@@ -150,6 +151,8 @@ ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 MpiDefault=none
 SchedulerType=sched/builtin
+# The pending jobs are looked at every 2 s rather than every 60 s (a requeued task waits for that).
+SchedulerParameters=sched_interval=2
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
 JobAcctGatherType=jobacct_gather/none
@@ -193,3 +196,32 @@ grep -q "backend cpu (1 thread" "$dir/frame/merged.parts/slurm-${array}_0.out" |
 "$identical" "$dir/one_run.exr" "$dir/frame/merged.exr" ||
   fail "the merge of the 4 tasks' parts differs from the one-run render"
 say "the merge of 4 array tasks equals the one-run render bit for bit"
+
+# 2. Preemption: task 0 of 2 requeued while it renders (scontrol requeue sends SIGTERM, as
+# preemption does) must resume its checkpoint, and the merge must still be the one run.
+long=(--backend cpu --scene builtin:cornell --width 32 --height 32 --seed 11)
+"$bin/stage4_direct_indirect" "${long[@]}" --spp 4096 --out "$dir/one_run_long.exr" >/dev/null
+read -r array merge < <(env "$mark" "$src/tools/slurm/render_array.sh" --parsable --out "$dir/preempt/merged.exr" \
+  --spp 4096 --tasks 2 --bin "$bin" --cpus-per-task 1 --checkpoint 0.001 -- "${long[@]}") ||
+  fail "render_array.sh did not submit"
+say "submitted job array $array (2 tasks of 2048 spp, a checkpoint after every pass) and merge job $merge"
+parts=$dir/preempt/merged.parts
+checkpoint_or_done() {
+  compgen -G "$parts/part000of002_*.exr.ckpt" ||
+    scontrol -o show job "${array}_0" | grep -qE 'JobState=(COMPLETED|FAILED|CANCELLED)'
+}
+wait_for "task 0's first checkpoint" checkpoint_or_done
+if scontrol requeue "${array}_0" 2>"$dir/requeue.err"; then
+  wait_jobs "$array,$merge"
+  grep -q "resumes" "$parts/slurm-${array}_0.out" ||
+    fail "task 0 was requeued but did not resume its checkpoint"
+  scontrol -o show job "${array}_0" | grep -q " Restarts=1 " || fail "task 0 was not restarted once"
+  say "task 0, requeued mid-render, resumed its checkpoint"
+else
+  # The task ended between its first checkpoint and the requeue: nothing to resume.
+  wait_jobs "$array,$merge"
+  say "task 0 finished before it could be requeued ($(cat "$dir/requeue.err")); the resume was not exercised"
+fi
+"$identical" "$dir/one_run_long.exr" "$dir/preempt/merged.exr" ||
+  fail "the merge with a requeued task differs from the one-run render"
+say "the merge with a requeued task equals the one-run render bit for bit"

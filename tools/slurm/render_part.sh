@@ -36,6 +36,7 @@ usage() {
 }
 is_count() { [[ $1 =~ ^[0-9]+$ ]] && [ "${#1}" -le 10 ]; }
 
+# [excerpt part_range]
 # Prints "FIRST COUNT" of part I of T of N samples (the split above).
 part_range() {
   local i=$1 t=$2 n=$3 blocks lo hi first end
@@ -44,6 +45,7 @@ part_range() {
   first=$(( 16 * lo )); end=$(( 16 * hi )); [ "$end" -le "$n" ] || end=$n
   echo "$first $(( end - first ))"
 }
+# [/excerpt]
 
 bin= spp= parts= stage=stage4_direct_indirect
 index=${SLURM_ARRAY_TASK_ID:-} count=${SLURM_ARRAY_TASK_COUNT:-}
@@ -74,6 +76,8 @@ is_count "$count" && [ "$count" -ge 1 ] || die "the part count must be a positiv
 is_count "$index" && [ "$index" -lt "$count" ] ||
   die "part index '$index' is not one of 0 ... $((count - 1)) (a Slurm array must be --array=0-$((count - 1)))"
 is_count "$threads" || die "--threads must be a non-negative integer, not '$threads'"
+[[ $checkpoint =~ ^[0-9]*\.?[0-9]+$ && ! $checkpoint =~ ^[0.]+$ ]] ||
+  die "--checkpoint must be a positive number of seconds, not '$checkpoint'"
 [ "$count" -le $(( (spp + 15) / 16 )) ] ||
   die "$spp spp make only $(( (spp + 15) / 16 )) blocks of 16 samples: use at most that many parts, not $count"
 [ -x "$bin/$stage" ] || die "no program $bin/$stage (build it, or give --bin and --stage)"
