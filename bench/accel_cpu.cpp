@@ -1,7 +1,8 @@
 // pt_bench's acceleration section on the CPU (accel.h): the renderer's own nearest-hit
 // search, common/kernel/intersect.glsl and common/kernel/bvh.glsl compiled as C++ exactly
 // as a stage's CPU kernel includes them (cpu/kernel_support.h: the BVH walk, or the brute
-// force on SIMD lanes of cpu/triangle_lanes.h, by params.accel), and the two ray sets:
+// force on SIMD lanes of cpu/triangle_lanes.h, by params.accel; the BVH as the CPU backend
+// walks it, collapsed to 8 children on SIMD lanes, cpu/wide_bvh.h), and the two ray sets:
 // camera rays (common/kernel/camera.glsl) and diffuse bounce rays from their hits, spawned
 // by common/kernel/spawn.glsl.
 #include <cmath>
@@ -22,7 +23,8 @@ namespace kernel {  // the renderer's intersection code, as a CPU kernel compile
 
 namespace pt::bench {
 
-void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>* soa, uint soa_stride) {
+void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>* soa, uint soa_stride,
+                    const WideBvh* wide) {
   kernel::triangles = scene.triangles.data();
   kernel::spheres = scene.spheres.data();
   kernel::params = FrameParams{};
@@ -33,6 +35,7 @@ void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>
   const bool has_bvh = bvh && !bvh->nodes.empty();
   kernel::bvh_nodes = has_bvh ? bvh->nodes.data() : nullptr;
   kernel::bvh_indices = has_bvh ? bvh->indices.data() : nullptr;
+  kernel::wide_bvh = has_bvh && wide && wide->source == bvh->nodes.data() ? wide : nullptr;
   kernel::triangle_soa = soa ? soa->data() : nullptr;
   kernel::triangle_soa_stride = soa ? soa_stride : 0u;
 }

@@ -14,6 +14,7 @@
 #include "common/scene/scene.h"
 #include "cpu/cpu_variants.h"
 #include "cpu/triangle_soa.h"
+#include "cpu/wide_bvh.h"
 
 namespace pt {
 
@@ -41,7 +42,12 @@ class CpuBackend : public Backend {
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data(),
                          soa_->data.data(), soa_->stride};
-    if (bvh && !bvh->nodes.empty()) scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();
+    wide_.reset();
+    if (bvh && !bvh->nodes.empty()) {
+      scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();
+      // The CPU walks the tree collapsed to 8 children and leaf blocks (wide_bvh.h).
+      wide_ = std::make_unique<WideBvh>(build_wide_bvh(*bvh, scene.triangles));
+    }
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
@@ -50,7 +56,9 @@ class CpuBackend : public Backend {
     result.counters[kCounterNonFinitePixel] = kNoPixel;
     KernelScene scene = scene_;
     scene.counters = result.counters;
+    wide_bvh_to_bind = wide_.get();  // cpu_bind takes it (KernelScene has no field for it)
     kernel_.bind(scene, params);
+    wide_bvh_to_bind = nullptr;
     // Rows are taken a few at a time from a shared counter: cheap load balancing.
     const uint height = params.height, rows_per_task = 4;
     std::atomic<uint> next_row{0};
@@ -73,6 +81,7 @@ class CpuBackend : public Backend {
   unsigned threads_;
   KernelScene scene_{};
   std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test
+  std::unique_ptr<WideBvh> wide_;     // the BVH collapsed for the SIMD walk, or none
 };
 
 }  // namespace

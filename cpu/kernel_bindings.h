@@ -22,6 +22,9 @@ inline uint triangle_soa_stride = 0u;  // floats per array (the padded triangle 
 // nullptr when the render has none (--accel none, or no triangles).
 inline const BvhNode* bvh_nodes = nullptr;
 inline const uint* bvh_indices = nullptr;
+// The same tree collapsed for the CPU's SIMD walk (cpu/wide_bvh.h), which replaces the
+// binary walk when set: nullptr when the binding had none (tests, the double-precision build).
+inline const pt::WideBvh* wide_bvh = nullptr;
 inline Triangle triangle_at(uint i) { return triangles[i]; }
 
 // The features this copy of the kernel is compiled for (cpu_variants.h): one copy per

@@ -22,6 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "common/kernel/scene_types.h"
+#include "cpu/wide_bvh.h"  // the CPU's wide BVH, a kernel global (kernel_bindings.h)
 
 namespace pt::glsl {
 using namespace glm;

@@ -1,0 +1,217 @@
+// The walk of the CPU's wide BVH (wide_bvh.h; the step after the article's GPU section,
+// which ends "yet without an acceleration structure"): a node's 8 boxes by one slab test on
+// SIMD lanes, exactly box_span() of common/kernel/box_slab.glsl on each lane (the same
+// padding and rounding up, so never a miss where the binary walk would not miss), the hit
+// children near to far on a stack (skipped when popped beyond the best hit), and a leaf's
+// triangles by hit_triangle_lanes() (triangle_lane_ops.h) with the brute force's tie rule.
+// AVX-512, AVX2 (8 lanes) or 4 lanes, chosen at run time as triangle_lanes.h chooses.
+#include "cpu/wide_bvh.h"
+
+#include "cpu/kernel_prelude.h"
+
+// The kernel code below is there for a few of its functions; the rest goes unused here.
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wunused-variable"
+
+namespace {
+namespace kernel {  // hit_triangle()'s constants and types, box_slab.glsl's inverse_direction()
+#include "cpu/kernel_begin.h"
+#include "common/kernel/box_slab.glsl"
+#include "cpu/triangle_lane_ops.h"
+}  // namespace kernel
+
+using namespace kernel;
+
+// Stack entries: at most 7 pending siblings per level of a tree shallower than the binary one.
+constexpr int kWideStack = int(kBvhStackSize) * kWideWidth;
+
+template <int bytes> struct Walk {
+  using L = Lanes<bytes>;
+  using F = typename L::F;
+  using I = typename L::I;
+  static constexpr int parts = pt::kWideWidth / L::count;
+
+  F o[3], inv[3];  // box_span()'s ray, world axes
+  LaneRay<bytes> tri;  // hit_triangle()'s ray, the ray's axes
+  int axis[3];
+
+  [[gnu::always_inline]] explicit Walk(const pt::WideRay& ray) {
+    const vec3 id = inverse_direction(vec3(ray.dir[0], ray.dir[1], ray.dir[2]));
+    for (int k = 0; k < 3; k++) o[k] = lanes_splat<F>(ray.origin[k]), inv[k] = lanes_splat<F>(id[k]);
+    axis[0] = ray.kx, axis[1] = ray.ky, axis[2] = ray.kz;
+    tri = LaneRay<bytes>{lanes_splat<F>(ray.origin[ray.kx]), lanes_splat<F>(ray.origin[ray.ky]),
+                         lanes_splat<F>(ray.origin[ray.kz]), lanes_splat<F>(ray.sx),
+                         lanes_splat<F>(ray.sy),             lanes_splat<F>(ray.sz)};
+  }
+
+  // box_span() on the children [at, at + L::count) of n: the mask of those hit within
+  // [0, t_max] (used slots only), and their entry distances.
+  [[gnu::always_inline]] I boxes(const pt::WideNode& n, int at, float t_max, F& enter) const {
+    F a_lo[3], a_hi[3];
+    for (int k = 0; k < 3; k++) a_lo[k] = L::load(n.lo[k] + at) - o[k], a_hi[k] = L::load(n.hi[k] + at) - o[k];
+    const F pad = kBoxPad * (lanes_max(lanes_abs(a_lo[0]), lanes_abs(a_hi[0])) +
+                             lanes_max(lanes_abs(a_lo[1]), lanes_abs(a_hi[1])) +
+                             lanes_max(lanes_abs(a_lo[2]), lanes_abs(a_hi[2])));
+    F t_enter = F{}, t_exit = lanes_splat<F>(t_max);
+    for (int k = 0; k < 3; k++) {
+      const F t0 = (a_lo[k] - pad) * inv[k], t1 = (a_hi[k] + pad) * inv[k];
+      const F near = t0 < t1 ? t0 : t1;
+      const F far = (t0 < t1 ? t1 : t0) * kBoxRoundUp;
+      t_enter = near > t_enter ? near : t_enter;
+      t_exit = far < t_exit ? far : t_exit;
+    }
+    I child;
+    __builtin_memcpy(&child, n.child + at, sizeof child);
+    enter = t_enter;
+    return (t_enter <= t_exit) & (child != pt::kWideEmpty);
+  }
+
+  // The mask of the 8 children hit, one bit each, and their entry distances.
+  [[gnu::always_inline]] unsigned children(const pt::WideNode& n, float t_max, float* enter) const {
+    unsigned bits = 0u;
+    for (int p = 0; p < parts; p++) {
+      F e;
+      const I hit = boxes(n, p * L::count, t_max, e);
+      __builtin_memcpy(enter + p * L::count, &e, sizeof e);
+      // One bit per lane: each lane's weight, or-ed over the lanes (no movemask builtin
+      // here: this code is compiled for every lane width, inside or outside AVX2).
+      static constexpr typename L::Int weight[8] = {1, 2, 4, 8, 16, 32, 64, 128};
+      I w;
+      __builtin_memcpy(&w, weight, sizeof w);
+      const I one = lanes_fold(hit & w, [](I x, I y) { return x | y; });
+      bits |= unsigned(one[0]) << (p * L::count);
+    }
+    return bits;
+  }
+
+  // The leaf block's triangles against `best` (by_index: the tie rule of the nearest hit).
+  template <bool by_index> [[gnu::always_inline]] Hit leaf(const pt::WideBlock& b, Hit best) const {
+    const float* q[9];
+    for (int v = 0; v < 3; v++) {
+      for (int k = 0; k < 3; k++) q[3 * v + k] = b.v[3 * v + axis[k]];
+    }
+    for (int p = 0; p < parts; p++) {
+      if (p > 0 && b.index[p * L::count] < 0) break;  // the rest of the block is empty
+      I index;
+      __builtin_memcpy(&index, b.index + p * L::count, sizeof index);
+      const typename L::Int held = by_index && best.kind == kPrimTriangle ? typename L::Int(best.prim) : -1;
+      LaneNearest<bytes> near{lanes_splat<F>(best.t), lanes_splat<F>(best.b1), lanes_splat<F>(best.b2), I{} + held};
+      if (hit_triangle_lanes<bytes, by_index>(tri, q, std::size_t(p * L::count), index, near))
+        best = nearest_of_lanes<bytes>(near, best);
+    }
+    return best;
+  }
+};
+
+template <int bytes>
+[[gnu::always_inline]] inline pt::WideHit nearest(const pt::WideBvh& bvh, const pt::WideRay& ray, pt::WideHit in) {
+  const Walk<bytes> walk(ray);
+  Hit best(in.t, in.b1, in.b2, uint(in.prim), in.prim >= 0 ? kPrimTriangle : kPrimNone);
+  std::int32_t stack_ref[kWideStack];
+  float stack_t[kWideStack];
+  int top = 0;
+  std::int32_t ref = 0;
+  while (true) {
+    if (ref >= 0) {
+      const pt::WideNode& n = bvh.nodes[std::size_t(ref)];
+      float enter[pt::kWideWidth];
+      unsigned bits = walk.children(n, best.t, enter);
+      if (bits != 0u) {
+        int i = __builtin_ctz(bits);
+        bits &= bits - 1u;
+        if (bits == 0u) {
+          ref = n.child[i];
+          continue;
+        }
+        // Two or more: all on the stack, nearest last (insertion by entry distance), and
+        // the nearest taken straight off again.
+        const int base = top;
+        for (;; i = __builtin_ctz(bits), bits &= bits - 1u) {
+          int j = top++;
+          for (; j > base && stack_t[j - 1] < enter[i]; j--) stack_ref[j] = stack_ref[j - 1], stack_t[j] = stack_t[j - 1];
+          stack_ref[j] = n.child[i], stack_t[j] = enter[i];
+          if (bits == 0u) break;
+        }
+        ref = stack_ref[--top];
+        continue;
+      }
+    } else {
+      best = walk.template leaf<true>(bvh.blocks[std::size_t(~ref)], best);
+    }
+    // Nothing below: the next pending child that a hit could still lie in.
+    while (top > 0 && !(stack_t[top - 1] <= best.t)) top--;
+    if (top == 0) break;
+    ref = stack_ref[--top];
+  }
+  if (best.kind != kPrimTriangle) return in;
+  return pt::WideHit{best.t, best.b1, best.b2, std::int32_t(best.prim)};
+}
+
+template <int bytes>
+[[gnu::always_inline]] inline bool occluded(const pt::WideBvh& bvh, const pt::WideRay& ray, float t_max) {
+  const Walk<bytes> walk(ray);
+  const Hit none(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+  std::int32_t stack_ref[kWideStack];
+  int top = 0;
+  stack_ref[top++] = 0;
+  while (top > 0) {
+    const std::int32_t ref = stack_ref[--top];
+    if (ref >= 0) {
+      const pt::WideNode& n = bvh.nodes[std::size_t(ref)];
+      float enter[pt::kWideWidth];
+      for (unsigned bits = walk.children(n, t_max, enter); bits != 0u; bits &= bits - 1u)
+        stack_ref[top++] = n.child[__builtin_ctz(bits)];
+    } else if (walk.template leaf<false>(bvh.blocks[std::size_t(~ref)], none).kind != kPrimNone) {
+      return true;
+    }
+  }
+  return false;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PT_WIDE_DISPATCH 1
+[[gnu::target("avx2")]] pt::WideHit nearest_avx2(const pt::WideBvh& b, const pt::WideRay& r, pt::WideHit h) {
+  return nearest<32>(b, r, h);
+}
+[[gnu::target("avx2,avx512f,avx512vl")]] pt::WideHit nearest_avx512(const pt::WideBvh& b, const pt::WideRay& r,
+                                                                    pt::WideHit h) {
+  return nearest<32>(b, r, h);
+}
+[[gnu::target("avx2")]] bool occluded_avx2(const pt::WideBvh& b, const pt::WideRay& r, float t) {
+  return occluded<32>(b, r, t);
+}
+[[gnu::target("avx2,avx512f,avx512vl")]] bool occluded_avx512(const pt::WideBvh& b, const pt::WideRay& r, float t) {
+  return occluded<32>(b, r, t);
+}
+// 2: AVX-512, 1: AVX2, 0: 4 lanes; `lanes` 4 asks for 4 lanes, 8 for at least AVX2.
+int level(int lanes) {
+  static const int best = __builtin_cpu_supports("avx512vl") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
+  return lanes == 4 ? 0 : lanes == 8 ? (best > 0 ? 1 : 0) : best;
+}
+#endif
+
+}  // namespace
+
+namespace pt {
+
+WideHit wide_bvh_nearest(const WideBvh& bvh, const WideRay& ray, WideHit best, int lanes) {
+  if (bvh.nodes.empty()) return best;
+#ifdef PT_WIDE_DISPATCH
+  const int l = level(lanes);
+  if (l == 2) return nearest_avx512(bvh, ray, best);
+  if (l == 1) return nearest_avx2(bvh, ray, best);
+#endif
+  return nearest<16>(bvh, ray, best);
+}
+
+bool wide_bvh_occluded(const WideBvh& bvh, const WideRay& ray, float t_max, int lanes) {
+  if (bvh.nodes.empty()) return false;
+#ifdef PT_WIDE_DISPATCH
+  const int l = level(lanes);
+  if (l == 2) return occluded_avx512(bvh, ray, t_max);
+  if (l == 1) return occluded_avx2(bvh, ray, t_max);
+#endif
+  return occluded<16>(bvh, ray, t_max);
+}
+
+}  // namespace pt

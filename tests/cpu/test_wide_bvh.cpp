@@ -1,0 +1,231 @@
+// The CPU's wide BVH (cpu/wide_bvh.h: the binary tree of the step after the article's GPU
+// section collapsed to 8 children and leaf blocks, walked on SIMD lanes) finds exactly the
+// brute force's hit: t, barycentrics and triangle bit for bit, the lower index on a tie, on
+// random scenes with copies, coplanar overlaps, slivers, zero-area triangles, all triangles
+// at one point, sizes from 1e-6 to 1e6, one triangle, none and NaN rays; its any-hit walk
+// agrees with the nearest hit within t_max; on 4 lanes and on 8, for leaves of 4 and of 8.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "common/scene/bvh.h"
+#include "common/scene/scene.h"
+#include "cpu/kernel_prelude.h"
+#include "cpu/wide_bvh.h"
+
+namespace {  // internal linkage: each test file compiles its own copy of the kernel code
+namespace kernel {
+#include "cpu/kernel_begin.h"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "cpu/kernel_support.h"
+}  // namespace kernel
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+struct Tally {
+  std::uint64_t rays = 0, hits = 0, mismatches = 0, ties = 0;
+};
+
+// The wide walk (on `lanes` lanes) against the loop in index order, for one ray and t_max.
+void compare(const pt::WideBvh& wide, kernel::Ray ray, float t_max, int lanes, Tally& tally) {
+  kernel::Hit none = kernel::Hit(t_max, 0.0f, 0.0f, 0u, pt::kPrimNone);
+  kernel::RayShear rs = kernel::make_ray_shear(ray.dir);
+  kernel::Hit brute = kernel::nearest_triangle_in_order(ray, rs, none);
+  pt::WideHit fast = pt::wide_bvh_nearest(wide, kernel::wide_ray(ray, rs), pt::WideHit{t_max, 0.0f, 0.0f, -1}, lanes);
+  const bool occluded = pt::wide_bvh_occluded(wide, kernel::wide_ray(ray, rs), t_max, lanes);
+  tally.rays++;
+  tally.hits += brute.kind == pt::kPrimTriangle;
+  const bool same = brute.kind == pt::kPrimTriangle
+                        ? fast.prim == std::int32_t(brute.prim) && same_bits(fast.t, brute.t) &&
+                              same_bits(fast.b1, brute.b1) && same_bits(fast.b2, brute.b2)
+                        : fast.prim == -1 && same_bits(fast.t, t_max);
+  if (!same || occluded != (brute.kind == pt::kPrimTriangle)) {
+    tally.mismatches++;
+    UNSCOPED_INFO(lanes << " lanes: brute t " << std::hexfloat << brute.t << " b " << brute.b1 << " " << brute.b2
+                        << " prim " << brute.prim << " kind " << brute.kind << "; wide t " << fast.t << " b "
+                        << fast.b1 << " " << fast.b2 << " prim " << fast.prim << std::defaultfloat << "; occluded "
+                        << occluded);
+  }
+  if (brute.kind == pt::kPrimTriangle) {  // another triangle at the same distance: a tie
+    for (uint i = 0; i < kernel::params.triangle_count; i++) {
+      kernel::Hit h = kernel::hit_triangle(ray, rs, i, none);
+      if (i != brute.prim && h.kind == pt::kPrimTriangle && same_bits(h.t, brute.t)) {
+        tally.ties++;
+        break;
+      }
+    }
+    // A hit already held at the same t with a higher index gives way to the lower one.
+    kernel::Hit held = kernel::hit_triangle(ray, rs, brute.prim, none);
+    pt::WideHit in{held.t, held.b1, held.b2, std::int32_t(brute.prim)};
+    pt::WideHit again = pt::wide_bvh_nearest(wide, kernel::wide_ray(ray, rs), in, lanes);
+    if (again.prim != std::int32_t(brute.prim) || !same_bits(again.t, brute.t)) tally.mismatches++;
+  }
+}
+
+// Rays at a scene as test_bvh_traversal.cpp shoots them: at points of random triangles
+// (edges and vertices too), along the axes, in random directions, bounded at infinity and
+// at the brute force's own hit distance; some with a NaN direction.
+void check(const pt::Scene& s, std::mt19937& rng, int count, const char* what, std::uint64_t min_ties = 0) {
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  pt::Bvh bvh = pt::build_bvh(s.triangles);
+  kernel::triangles = s.triangles.data();
+  kernel::params.triangle_count = uint(s.triangles.size());
+  pt::Bounds b = s.bounds();
+  glm::vec3 center = b.empty() ? glm::vec3(0.0f) : 0.5f * b.lo + 0.5f * b.hi;
+  float size = b.empty() ? 1.0f : std::max(glm::length(b.hi - b.lo), 1e-30f);
+  for (unsigned leaf_max : {4u, 8u}) {
+    const pt::WideBvh wide = pt::build_wide_bvh(bvh, s.triangles, leaf_max);
+    REQUIRE(wide.nodes.empty() == s.triangles.empty());
+    Tally tally;
+    for (int r = 0; r < count; r++) {
+      glm::vec3 origin = center + 2.0f * size * glm::vec3(unit(rng), unit(rng), unit(rng));
+      glm::vec3 target = center + size * glm::vec3(unit(rng), unit(rng), unit(rng));
+      if (!s.triangles.empty() && r % 4 != 3) {
+        const pt::Triangle& t = s.triangles[std::size_t(rng() % s.triangles.size())];
+        float b1 = 0.5f * (unit(rng) + 1.0f), b2 = 0.5f * (unit(rng) + 1.0f);
+        if (r % 5 == 0) b2 = 0.0f;             // on an edge
+        if (r % 7 == 0) b1 = 0.0f, b2 = 0.0f;  // at a vertex
+        if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
+        target = (1.0f - b1 - b2) * t.p0 + b1 * t.p1 + b2 * t.p2;
+      }
+      glm::vec3 dir = target - origin;
+      if (r % 6 == 5) {  // along one axis: two direction components exactly zero
+        int k = int(rng() % 3);
+        origin = target, origin[k] += (r % 12 < 6 ? 1.5f : -1.5f) * size;
+        dir = glm::vec3(0.0f), dir[k] = r % 12 < 6 ? -1.0f : 1.0f;
+      }
+      if (!(glm::length(dir) > 0.0f)) continue;
+      dir = glm::normalize(dir);
+      if (r % 97 == 13) dir.y = std::nanf("");  // a NaN ray: no hit, by either search
+      for (int lanes : {4, 8}) {
+        kernel::Ray ray(origin, dir);
+        compare(wide, ray, kernel::kInfinity, lanes, tally);
+        kernel::RayShear rs = kernel::make_ray_shear(ray.dir);
+        kernel::Hit first = kernel::nearest_triangle_in_order(ray, rs, kernel::Hit(kernel::kInfinity, 0, 0, 0u, 0u));
+        if (first.kind == pt::kPrimTriangle) compare(wide, ray, first.t, lanes, tally);  // at t_max: not taken
+      }
+    }
+    INFO(what << ", leaves of " << leaf_max << ": " << s.triangles.size() << " triangles, " << wide.nodes.size()
+              << " nodes, " << tally.rays << " rays, " << tally.hits << " hits, " << tally.ties << " ties");
+    CHECK(tally.mismatches == 0);
+    CHECK(tally.ties >= min_ties);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("wide bvh: the CPU's SIMD walk finds the brute force's hit bit for bit on random scenes", "[bvh]") {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> exponent(-6, 6);
+  for (int scene = 0; scene < 20; scene++) {
+    pt::Scene s;
+    uint m = s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+    const float scale = std::pow(10.0f, float(exponent(rng)));  // 1e-6 ... 1e6
+    const glm::vec3 offset = scale * float(scene % 3) * 50.0f * glm::vec3(unit(rng), unit(rng), unit(rng));
+    const int count = 1 + scene * 37;
+    auto point = [&] { return offset + scale * glm::vec3(unit(rng), unit(rng), unit(rng)); };
+    for (int i = 0; i < count; i++) {
+      glm::vec3 a = point(), b = 0.2f * (point() - a) + a, c = 0.2f * (point() - a) + a;
+      if (i % 7 == 3) c = a + 1e-4f * (b - a);  // a sliver
+      if (i % 9 == 4) c = b;                     // zero area
+      if (i % 13 == 9) {                         // a copy: equal distances
+        const pt::Triangle& earlier = s.triangles[std::size_t(i) / 3];
+        a = earlier.p0, b = earlier.p1, c = earlier.p2;
+      }
+      if (i % 11 == 5 && i > 0) a = s.triangles.back().p1, b = s.triangles.back().p0;  // a shared edge
+      s.add_triangle(a, b, c, m);
+    }
+    INFO("scene " << scene << ", scale " << scale);
+    check(s, rng, 400, "random");
+  }
+}
+
+TEST_CASE("wide bvh: coplanar overlaps, copies, one point, one triangle, none, 1e-6 to 1e6", "[bvh]") {
+  std::mt19937 rng(31337);
+  pt::Scene plane;  // overlapping triangles on z = 0, the large ones first: ties everywhere
+  uint m = plane.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  for (int size = 32; size >= 1; size /= 2) {
+    for (int x = 0; x < 32; x += size) {
+      for (int y = 0; y < 32; y += size) {
+        plane.add_triangle({float(x), float(y), 0}, {float(x + size), float(y), 0}, {float(x), float(y + size), 0}, m);
+      }
+    }
+  }
+  check(plane, rng, 1500, "coplanar overlaps", 100);
+  {
+    const pt::Bvh bvh = pt::build_bvh(plane.triangles);
+    const pt::WideBvh wide = pt::build_wide_bvh(bvh, plane.triangles);
+    Tally tally;  // straight down from integer heights: exact distances, so overlaps tie
+    for (int r = 0; r < 2000; r++) {
+      glm::vec3 origin(float(rng() % 128) * 0.25f, float(rng() % 128) * 0.25f, float(1 + rng() % 8));
+      compare(wide, kernel::Ray(origin, glm::vec3(0, 0, -1)), kernel::kInfinity, r % 2 ? 4 : 8, tally);
+    }
+    INFO(tally.rays << " rays straight down, " << tally.ties << " ties");
+    CHECK(tally.mismatches == 0);
+    CHECK(tally.ties > 1000);
+  }
+
+  pt::Scene point;
+  point.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  for (int i = 0; i < 100; i++) point.add_triangle({1, 2, 3}, {1, 2, 3}, {1, 2, 3}, 0u);
+  point.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0u);  // something to hit
+  check(point, rng, 300, "at one point");
+
+  pt::Scene one;
+  one.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  one.add_triangle({-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, 0u);
+  check(one, rng, 300, "one triangle");
+
+  pt::Scene none;
+  none.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  check(none, rng, 30, "no triangles");
+
+  pt::Scene copies;  // a grid of quads, every quad three times
+  copies.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  for (int copy = 0; copy < 3; copy++) {
+    for (int x = 0; x < 10; x++) {
+      for (int y = 0; y < 10; y++) {
+        pt::add_quad(copies, {float(x), float(y), 5}, {float(x + 1), float(y), 5}, {float(x + 1), float(y + 1), 5},
+                     {float(x), float(y + 1), 5}, 0u);
+      }
+    }
+  }
+  check(copies, rng, 1000, "copies in a plane", 50);
+
+  pt::Scene spread;  // triangles from 1e-6 to 1e6 in size, at distances to match
+  spread.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int i = 0; i < 500; i++) {
+    float s = std::pow(10.0f, -6.0f + 12.0f * float(i) / 500.0f);
+    glm::vec3 c = s * glm::vec3(unit(rng), unit(rng), unit(rng));
+    spread.add_triangle(c, c + s * glm::vec3(unit(rng), unit(rng), 0.1f), c + s * glm::vec3(0.1f, unit(rng), unit(rng)), 0u);
+  }
+  check(spread, rng, 2000, "sizes 1e-6 to 1e6");
+}
+
+TEST_CASE("wide bvh: every triangle lands in exactly one leaf block, under boxes of the binary tree", "[bvh]") {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  pt::Scene s;
+  s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  for (int i = 0; i < 3000; i++) {
+    glm::vec3 c = 10.0f * glm::vec3(unit(rng), unit(rng), unit(rng));
+    s.add_triangle(c, c + 0.3f * glm::vec3(unit(rng), unit(rng), unit(rng)), c + 0.3f * glm::vec3(unit(rng), unit(rng), unit(rng)), 0u);
+  }
+  const pt::Bvh bvh = pt::build_bvh(s.triangles);
+  for (unsigned leaf_max : {4u, 8u}) {
+    const pt::WideBvh wide = pt::build_wide_bvh(bvh, s.triangles, leaf_max);
+    std::vector<int> seen(s.triangles.size(), 0);
+    for (const pt::WideBlock& b : wide.blocks) {
+      for (int i = 0; i < pt::kWideWidth; i++) {
+        if (b.index[i] >= 0) seen[std::size_t(b.index[i])]++;
+      }
+    }
+    CHECK(std::count(seen.begin(), seen.end(), 1) == std::ptrdiff_t(s.triangles.size()));
+    CHECK(wide.nodes.size() < bvh.nodes.size() / 4);  // a wide tree: far fewer nodes
+  }
+}
