@@ -90,8 +90,9 @@ def accel_section(rows, builds, run, out_dir):
           "height, the room around it). Bounce rays: one from each camera ray's hit, cosine-distributed about the "
           "normal and spawned as the renderer spawns them (common/kernel/spawn.glsl). Every method traces the same "
           "rays: the brute force is the renderer's `--accel none` search (cpu/triangle_lanes.h), the BVH is "
-          "common/kernel/bvh.glsl's nearest-hit walk, compiled as C++ on the CPU and run by intersect_raycast.comp "
-          "on the GPU backend, Embree is `rtcIntersect1` one ray at a time on a high-quality build. The CPU methods "
+          "the one tree of common/scene/bvh.h: on the CPU as the CPU backend walks it, collapsed to 8 children and "
+          "leaf blocks of up to 8 triangles on SIMD lanes (cpu/wide_bvh.h), on the GPU backend common/kernel/bvh.glsl's "
+          "binary walk run by intersect_raycast.comp; Embree is `rtcIntersect1` one ray at a time on a high-quality build. The CPU methods "
           "run on all cores, and the methods take turns (at least %s s and 3 passes each) so that they share the same load. "
           "\u2020: the brute force timed on an even sample of the rays (accel.csv says how many); skipped: even "
           "2048 rays would have taken longer than the limit." % (

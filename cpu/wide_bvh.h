@@ -62,10 +62,10 @@ struct WideHit {
   std::int32_t prim;
 };
 
-// The lanes the walk uses: 0 the best the CPU has (AVX-512, AVX2, else 4 lanes), 4 or 8
-// (tests: both paths on any x86-64 CPU with AVX2).
 // The nearest hit of `best` and every triangle; a hit at best.t wins when its index is lower
 // than best.prim (best.prim -1: only nearer hits count, as hit_triangle()'s t < best.t).
+// lanes: 0 the best the CPU has (AVX-512, AVX2, else 4 lanes); 4 or 8 ask for that width
+// (the tests run both on any x86-64 CPU with AVX2).
 WideHit wide_bvh_nearest(const WideBvh& bvh, const WideRay& ray, WideHit best, int lanes = 0);
 // Whether some triangle is hit closer than t_max.
 bool wide_bvh_occluded(const WideBvh& bvh, const WideRay& ray, float t_max, int lanes = 0);
