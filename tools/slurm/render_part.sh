@@ -84,7 +84,7 @@ is_count "$threads" || die "--threads must be a non-negative integer, not '$thre
 for a in "$@"; do
   case ${a%%=*} in
     --out|--spp|--samples|--threads|--checkpoint|--resume|--time-budget|--target-error|--help)
-      die "the stage option ${a%%=*} is set by the split: leave it out (the parts' options: --spp, --threads, --checkpoint)" ;;
+      die "the stage option ${a%%=*} is set by the split: leave it out (give --spp and --checkpoint to the script; a part's threads are the CPUs it gets)" ;;
   esac
 done
 
