@@ -6,6 +6,7 @@
 #include <new>
 
 #include "common/app/checkpoint.h"
+#include "common/app/error_map.h"
 #include "common/base/error.h"
 #include "common/render/interrupt.h"
 #include "common/render/memory.h"
@@ -33,6 +34,7 @@ std::optional<Options> read_options(int argc, char** argv, const Stage& stage) {
   if (!options) return options;
   install_interrupt_handlers();
   check_image_memory(options->render.width, options->render.height, options->resume);
+  if (!options->error_map.empty()) error_map_file(options->error_map);  // exit 2 or 5 now, not after the render
   return options;
 }
 
@@ -62,10 +64,19 @@ namespace {
 
 std::string checkpoint_path(const Options& options) { return options.out + ".ckpt"; }
 
+// The image's metadata, and for an .exr what identifies the render (film_file.h): the
+// scene's content hash is computed only for an .exr, which is the one that carries it.
+ImageMetadata part_metadata(const char* stage, const Options& options, const Backend& backend, const Scene& scene,
+                            const RenderResult& result) {
+  ImageMetadata meta = image_metadata(stage, options, backend, result);
+  if (OutputFile::is_exr(options.out)) meta.identity = film_identity(stage, scene, options.render);
+  return meta;
+}
+
 // --resume: the saved state, checked against this render.
 RenderResult resumed_state(const Options& options, const Stage& stage, std::uint64_t key) {
   const RenderSettings& s = options.render;
-  RenderResult state = load_checkpoint(options.resume_path, key, stage.info.name, s.width, s.height);
+  RenderResult state = load_checkpoint(options.resume_path, key, stage.info.name, s.width, s.height, s.first_sample);
   if (state.film.spp() > s.spp) {
     throw Error(kExitBadOption, "checkpoint '" + options.resume_path + "' has " + std::to_string(state.film.spp()) +
                                     " spp, more than --spp " + std::to_string(s.spp) +
@@ -124,7 +135,7 @@ int write_result(const OutputFile& out, const Options& options, const Backend& b
     // --backend gpu: the samples done so far are written, then the device's error, exit 4.
     if (spp > 0) {
       out.write(result.film.mean_rgb(), options.render.width, options.render.height,
-                image_metadata(name, options, backend, result), options.exposure);
+                part_metadata(name, options, backend, scene, result), options.exposure);
     }
     std::string done = spp > 0 ? "the " + std::to_string(spp) + " spp done are in " + options.out : "nothing was rendered";
     std::fprintf(stderr, "%s: %s; %s\n", name, result.device_error.c_str(), done.c_str());
@@ -132,7 +143,11 @@ int write_result(const OutputFile& out, const Options& options, const Backend& b
   }
   // The image atomically, then the one summary line.
   out.write(result.film.mean_rgb(), options.render.width, options.render.height,
-            image_metadata(name, options, backend, result), options.exposure);
+            part_metadata(name, options, backend, scene, result), options.exposure);
+  if (!options.error_map.empty()) {
+    write_error_map(error_map_file(options.error_map), result.film, options.render.target_error,
+                    image_metadata(name, options, backend, result));
+  }
   // A finished render needs its checkpoint no more.
   if (spp >= options.render.spp && (options.checkpoint > 0.0 || options.resume)) {
     std::error_code ignored;

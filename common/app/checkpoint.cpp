@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'T', 'C', 'K', 'P', 'T', 0, 1};  // the last byte: format version
+constexpr char kMagic[8] = {'P', 'T', 'C', 'K', 'P', 'T', 0, 2};  // the last byte: format version (2: passes end at 1, 2, 4, 8, 16, 32, ...)
 
 struct Header {
   char magic[8];
@@ -73,14 +73,21 @@ void write_all(int fd, const void* data, std::size_t bytes, const std::string& p
 
 }  // namespace
 
-std::uint64_t render_key(const char* stage, const Scene& scene, const RenderSettings& s) {
+std::uint64_t scene_hash(const Scene& scene) {
   Fnv f;
-  f.add(stage, std::strlen(stage) + 1);
   f.add_vector(scene.triangles);
   f.add_vector(scene.spheres);
   f.add_vector(scene.materials);
   f.add_vector(scene.point_lights);
   f.add_vector(scene.lights);
+  return f.h;
+}
+
+std::uint64_t render_key(const char* stage, const Scene& scene, const RenderSettings& s) {
+  Fnv f;
+  f.add(stage, std::strlen(stage) + 1);
+  const std::uint64_t content = scene_hash(scene);
+  f.add(&content, sizeof content);
   // The frame parameters hold the camera, size, seed, sky, roulette, depth cap and the
   // scene's scale; the per-pass fields stay zero.
   FrameParams params = make_frame_params(scene, s);
@@ -88,6 +95,7 @@ std::uint64_t render_key(const char* stage, const Scene& scene, const RenderSett
   f.add(&params, sizeof params);
   std::uint32_t general = s.all_features ? 1u : 0u;
   f.add(&general, sizeof general);
+  f.add(&s.first_sample, sizeof s.first_sample);  // --samples FIRST:COUNT: a part starts there
   return f.h;
 }
 
@@ -139,7 +147,8 @@ void save_checkpoint(const std::string& path, std::uint64_t key, const char* sta
   if (dir >= 0) ::fsync(dir), ::close(dir);
 }
 
-RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const char* stage, int width, int height) {
+RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const char* stage, int width, int height,
+                             std::uint64_t first_sample) {
   const std::string redo = "delete it and render again without --resume";
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {
@@ -177,9 +186,8 @@ RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const c
   f.add(&h, sizeof h);
   f.add(sums.data(), bytes);
   if (f.h != stored) refuse(path, "is damaged (its checksum does not match)", redo);
-  // The schedule: `passes` whole passes of 1, 2, 4, 8, 16, 16, ... samples.
-  std::uint64_t scheduled = h.passes <= 4 ? (std::uint64_t(1) << h.passes) - 1 : 15 + kMaxPassSamples * (h.passes - 4);
-  if (h.passes > (std::uint64_t(1) << 40) || h.spp != scheduled) {
+  // A checkpoint is saved after whole passes: its samples end where a pass ends.
+  if (h.passes > h.spp || h.spp >= kSampleIndexLimit || !is_pass_end(first_sample + h.spp)) {
     refuse(path, "is damaged (" + std::to_string(h.spp) + " spp in " + std::to_string(h.passes) + " passes)", redo);
   }
   h.stage[sizeof h.stage - 1] = 0;

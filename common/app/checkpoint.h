@@ -17,9 +17,13 @@ namespace pt {
 
 struct Scene;
 
+// A 64-bit FNV-1a hash of the scene's arrays (triangles, spheres, materials, lights): the
+// same content gives the same hash whatever file or path it came from.
+std::uint64_t scene_hash(const Scene& scene);
+
 // A 64-bit FNV-1a hash of everything that determines the image apart from the sample count:
-// the stage, the scene's arrays and camera, the image size, seed, sky, roulette, depth cap
-// and the kernel choice (--all-features). Two renders with the same key and seed add up
+// the stage, the scene's arrays and camera, the image size, seed, sky, roulette, depth cap,
+// the kernel choice (--all-features) and the first sample (--samples). Two renders with the same key and seed add up
 // the same samples.
 std::uint64_t render_key(const char* stage, const Scene& scene, const RenderSettings& settings);
 
@@ -30,6 +34,7 @@ void save_checkpoint(const std::string& path, std::uint64_t key, const char* sta
 // Reads a checkpoint written by save_checkpoint for a render with this key and size. A
 // missing file, a damaged or truncated one, or one of a different render is refused with
 // pt::Error(kExitBadOption) and one line saying what is wrong and what to do.
-RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const char* stage, int width, int height);
+RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const char* stage, int width, int height,
+                             std::uint64_t first_sample = 0);
 
 }  // namespace pt

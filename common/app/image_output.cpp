@@ -65,6 +65,8 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), extension_(lo
   fs::remove(probe, ec);
 }
 
+bool OutputFile::is_exr(const std::string& path) { return lower_extension(path) == "exr"; }
+
 std::uint8_t encode_srgb8(float linear, float exposure) {
   float v = linear * std::exp2(exposure);
   if (!(v > 0.0f)) return 0;  // also NaN
@@ -72,6 +74,49 @@ std::uint8_t encode_srgb8(float linear, float exposure) {
   float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
   return std::uint8_t(std::lround(s * 255.0f));
 }
+
+namespace {
+
+// The film's channels of an .exr (film_file.h): after R, G, B the variance of each pixel's
+// mean luminance, then the two 32-bit halves of each double sum. Returns the pixels in the
+// channels' own formats (4 bytes each), for write_image(TypeDesc::UNKNOWN).
+std::vector<std::uint32_t> film_channels(const std::vector<float>& rgb, const ImageMetadata& meta,
+                                         OIIO::ImageSpec& spec) {
+  using namespace OIIO;
+  const Film& film = *meta.film;
+  spec.nchannels = 3 + 1 + 8;
+  spec.channelnames = {"R", "G", "B", "Y.variance"};
+  spec.channelformats.assign(4, TypeDesc::FLOAT);
+  for (const char* name : kFilmSumChannels) {
+    for (const char* half : {".hi", ".lo"}) {
+      spec.channelnames.push_back(std::string("film.") + name + half);
+      spec.channelformats.push_back(TypeDesc::UINT);
+    }
+  }
+  spec.attribute("pt:seed", std::to_string(meta.identity.seed));  // what the merge compares
+  spec.attribute("pt:scene_hash", meta.identity.scene_hash);
+  spec.attribute("pt:options", meta.identity.options);
+  spec.attribute("pt:samples", format_ranges(meta.ranges));
+  const std::size_t pixels = std::size_t(film.width()) * std::size_t(film.height());
+  std::vector<std::uint32_t> out(pixels * std::size_t(spec.nchannels));
+  const std::vector<double>& sums = film.sums();
+  for (std::size_t p = 0; p < pixels; p++) {
+    std::uint32_t* o = &out[p * std::size_t(spec.nchannels)];
+    const int x = int(p % std::size_t(film.width())), y = int(p / std::size_t(film.width()));
+    const float variance = film.spp() >= 2 ? float(film.sample_variance(x, y) / double(film.spp())) : 0.0f;
+    std::memcpy(o, &rgb[3 * p], 3 * sizeof(float));
+    std::memcpy(o + 3, &variance, sizeof variance);
+    for (int k = 0; k < 4; k++) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &sums[4 * p + std::size_t(k)], sizeof bits);
+      o[4 + 2 * k] = std::uint32_t(bits >> 32);
+      o[5 + 2 * k] = std::uint32_t(bits);
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 void OutputFile::write(const std::vector<float>& rgb, int width, int height, const ImageMetadata& meta,
                        float exposure) const {
@@ -90,18 +135,24 @@ void OutputFile::write(const std::vector<float>& rgb, int width, int height, con
   if (extension_ == "exr") spec.attribute("compression", "zip");
 
   std::vector<std::uint8_t> bytes;
+  std::vector<std::uint32_t> film;
   const void* pixels = rgb.data();
+  TypeDesc format = png ? TypeDesc::UINT8 : TypeDesc::FLOAT;
   if (png) {
     bytes.resize(rgb.size());
     for (std::size_t i = 0; i < rgb.size(); i++) bytes[i] = encode_srgb8(rgb[i], exposure);
     pixels = bytes.data();
+  } else if (extension_ == "exr" && meta.film) {
+    film = film_channels(rgb, meta, spec);
+    pixels = film.data();
+    format = TypeDesc::UNKNOWN;  // each channel in its own format
   }
 
   fs::path tmp = temporary_name(path_, extension_);
   set_file_in_progress(tmp.c_str());  // a second Ctrl-C removes it
   auto out = ImageOutput::create(extension_);
   if (!out) fail(path_, "no " + extension_ + " writer in OpenImageIO");
-  bool ok = out->open(tmp.string(), spec) && out->write_image(png ? TypeDesc::UINT8 : TypeDesc::FLOAT, pixels) &&
+  bool ok = out->open(tmp.string(), spec) && out->write_image(format, pixels) &&
             out->close();
   std::error_code ec;
   if (!ok) {

@@ -1,4 +1,5 @@
-// Image output through OpenImageIO (the contract (README.md), --out): .exr linear float32 RGB radiance,
+// Image output through OpenImageIO (the contract (README.md), --out): .exr linear float32 RGB radiance
+// (and the film's channels, film_file.h),
 // .png 8-bit sRGB (exposure, then clamp), .hdr RGBE. The target is checked before the
 // render starts and written atomically after it: a temporary file in the same folder,
 // flushed, then renamed over the target, so a failed run never leaves a broken file.
@@ -7,6 +8,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "common/app/film_file.h"
 
 namespace pt {
 
@@ -17,6 +20,11 @@ struct ImageMetadata {
   std::uint64_t spp = 0;
   std::uint32_t seed = 0;
   double seconds = 0.0;
+  // An .exr also carries the film, so that parts of one render merge (film_file.h): its
+  // sums, what identifies the render, and the samples it holds. nullptr: RGB only.
+  const Film* film = nullptr;
+  FilmIdentity identity;
+  std::vector<SampleRange> ranges;
 };
 
 class OutputFile {
@@ -26,6 +34,8 @@ class OutputFile {
   explicit OutputFile(std::string path);
 
   const std::string& path() const { return path_; }
+  // Whether `path` names an .exr (the one type that carries the film).
+  static bool is_exr(const std::string& path);
 
   // rgb: width * height * 3 linear radiance values, top row first.
   void write(const std::vector<float>& rgb, int width, int height, const ImageMetadata& meta,

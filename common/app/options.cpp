@@ -27,6 +27,27 @@ glm::vec3 parse_rgb(const std::string& text, const std::string& option) {
   return v;
 }
 
+void parse_sample_range(const std::string& text, RenderSettings& settings) {
+  const std::string usage = "; give --samples FIRST:COUNT, e.g. --samples 64:64 for the second 64 samples of each pixel";
+  const std::size_t colon = text.find(':');
+  auto number = [&](const std::string& part, const char* what) {
+    if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos || part.size() > 10) {
+      throw Error(kExitBadOption, "--samples '" + text + "': " + what + " is not a whole number" + usage);
+    }
+    return std::stoull(part);
+  };
+  if (colon == std::string::npos) throw Error(kExitBadOption, "--samples '" + text + "' has no ':'" + usage);
+  const std::uint64_t first = number(text.substr(0, colon), "FIRST");
+  const std::uint64_t count = number(text.substr(colon + 1), "COUNT");
+  if (count == 0) throw Error(kExitBadOption, "--samples '" + text + "': COUNT is 0, nothing to render" + usage);
+  if (first + count > kSampleIndexLimit) {
+    throw Error(kExitBadOption, "--samples '" + text + "' goes past sample index " + std::to_string(kSampleIndexLimit - 1) +
+                                    ", the largest a render can address; use a smaller FIRST or COUNT");
+  }
+  settings.first_sample = first;
+  settings.spp = count;
+}
+
 std::optional<Options> parse_options(int argc, char** argv, const StageInfo& stage) {
   Options o;
   o.render.spp = stage.default_spp;
@@ -42,6 +63,12 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_option("--width", o.render.width, "image width in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
   app.add_option("--height", o.render.height, "image height in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
   app.add_option("--spp", o.render.spp, "samples per pixel")->capture_default_str()->check(CLI::Range(std::uint64_t(1), std::uint64_t(0xffffffffu)));
+  std::string samples;
+  app.add_option("--samples", samples,
+                 "render sample indices FIRST ... FIRST+COUNT-1 of every pixel (--spp N is 0:N); parts whose ranges "
+                 "split at pass ends (1, 2, 4, 8, 16 and every multiple of 16) merge (pt_merge) into one run's "
+                 "image bit for bit, other splits to float rounding")
+      ->type_name("FIRST:COUNT");
   app.add_option("--seed", o.render.seed, "random seed: same seed, options and backend give the same image")->capture_default_str();
   app.add_option("--backend", o.backend, "auto (gpu if a Vulkan device exists, else cpu), cpu or gpu")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
@@ -54,8 +81,13 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
                  "render in passes until SECONDS are spent (--spp, if given, still caps the samples)")
       ->check(CLI::Range(0.0, 1e9));
   app.add_option("--target-error", o.render.target_error,
-                 "stop once the estimated relative standard error of the image mean is below E")
+                 "render in passes until the estimated per-pixel relative error (RMS over pixels of each pixel's "
+                 "standard error, over the image's mean; checked from 16 spp) is below E")
       ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--error-map", o.error_map,
+                 "also write each pixel's estimated standard error over the image's mean: .png grey, black 0 to "
+                 "white 2 x --target-error (else 2 x the printed per-pixel error); .exr/.hdr the values")
+      ->type_name("PATH");
   std::string accel = "bvh";
   app.add_option("--accel", accel, "triangle search: bvh (a bounding volume hierarchy) or none (every triangle); the same image")
       ->capture_default_str()->check(CLI::IsMember({"bvh", "none"}));
@@ -86,10 +118,16 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.render.sky = parse_rgb(sky, "--sky");
+  if (!samples.empty()) {
+    if (app.count("--spp")) throw Error(kExitBadOption, "--spp and --samples both give the samples: use one (--spp N is --samples 0:N)");
+    parse_sample_range(samples, o.render);
+  }
   o.resume = app.count("--resume") > 0;
   if (o.resume && o.resume_path.empty()) o.resume_path = o.out + ".ckpt";
   // With a time or error target and no --spp, the samples are not capped.
-  if ((o.render.time_budget > 0.0 || o.render.target_error > 0.0) && app.count("--spp") == 0) o.render.spp = 0xffffffffu;
+  if ((o.render.time_budget > 0.0 || o.render.target_error > 0.0) && app.count("--spp") == 0 && samples.empty()) {
+    o.render.spp = 0xffffffffu;
+  }
   o.render.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
   o.render.accel = accel == "none" ? kAccelNone : kAccelBvh;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");

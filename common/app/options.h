@@ -32,11 +32,16 @@ struct Options {
   double checkpoint = 0.0;                // --checkpoint SECONDS: save <out>.ckpt this often (0: never)
   bool resume = false;                    // --resume [PATH]: continue a checkpoint
   std::string resume_path;                // its path (default <out>.ckpt)
+  std::string error_map;                  // --error-map PATH: each pixel's relative error (error_map.h)
 };
 
 // Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with
 // one line for anything wrong.
 std::optional<Options> parse_options(int argc, char** argv, const StageInfo& stage);
+
+// Parses --samples "FIRST:COUNT" into settings.first_sample and settings.spp, or throws
+// pt::Error(2) with one line.
+void parse_sample_range(const std::string& text, RenderSettings& settings);
 
 // Parses "R,G,B" into three finite, non-negative numbers, or throws pt::Error(2).
 glm::vec3 parse_rgb(const std::string& text, const std::string& option);

@@ -15,6 +15,8 @@ ImageMetadata image_metadata(const char* stage, const Options& o, const Backend&
   m.spp = r.film.spp();
   m.seed = o.render.seed;
   m.seconds = r.seconds;
+  m.film = &r.film;  // an .exr carries the film and the samples it holds (film_file.h)
+  if (r.film.spp() > 0) m.ranges = {{o.render.first_sample, r.film.spp()}};
   return m;
 }
 
@@ -28,7 +30,9 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
                 (unsigned long long)f.spp(), r.seconds, r.seconds > 0.0 ? samples / r.seconds : 0.0);
   std::string s = line;
   if (f.spp() >= 2) {
-    std::snprintf(line, sizeof line, ", estimated relative error %.2g", f.relative_standard_error());
+    // The noise a user sees in a pixel, then the far smaller error of the image's mean.
+    std::snprintf(line, sizeof line, ", estimated per-pixel relative error %.2g, image-mean error %.2g",
+                  f.per_pixel_relative_error(), f.relative_standard_error());
     s += line;
   }
   // Events that are rare and deserve a word: each is said once, with its count.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -62,6 +63,21 @@ double Film::mean_luminance() const {
   for (int y = 0; y < height_; y++)
     for (int x = 0; x < width_; x++) sum += luminance(mean(x, y));
   return sum / (double(width_) * double(height_));
+}
+
+double Film::pixel_standard_error(int x, int y) const {
+  return spp_ < 2 ? 0.0 : std::sqrt(sample_variance(x, y) / double(spp_));
+}
+
+double Film::per_pixel_relative_error() const {
+  if (spp_ < 2) return 0.0;
+  double variance_sum = 0.0;  // of the pixels' values: sample variance / spp
+  for (int y = 0; y < height_; y++)
+    for (int x = 0; x < width_; x++) variance_sum += sample_variance(x, y) / double(spp_);
+  double pixels = double(width_) * double(height_);
+  double image_mean = mean_luminance();
+  if (!std::isfinite(variance_sum) || !std::isfinite(image_mean)) return std::numeric_limits<double>::infinity();
+  return image_mean > 0.0 ? std::sqrt(variance_sum / pixels) / image_mean : 0.0;
 }
 
 double Film::relative_standard_error() const {

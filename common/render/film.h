@@ -43,7 +43,15 @@ class Film {
   double sample_variance(int x, int y) const;
   // The image's mean luminance: the mean over pixels of luminance(mean(x, y)).
   double mean_luminance() const;
-  // Estimated relative standard error of the image's mean luminance (0 if unknown).
+  // Estimated standard error of the pixel's value (its luminance): sqrt(sample variance /
+  // spp), the noise a user sees in that pixel (0 below 2 spp).
+  double pixel_standard_error(int x, int y) const;
+  // The per-pixel relative error (the summary line, --target-error): the RMS over pixels of
+  // pixel_standard_error, divided by the image's mean luminance. 0 if unknown (spp < 2) or
+  // for a black image; infinity if the sums are not finite (never trusted to stop a render).
+  double per_pixel_relative_error() const;
+  // Estimated relative standard error of the image's mean luminance (0 if unknown): about
+  // sqrt(pixels) times smaller than the per-pixel error, so not the noise a user sees.
   double relative_standard_error() const;
 
  private:

@@ -40,9 +40,15 @@ void print_progress(const RenderSettings& s, const char* label, std::uint64_t do
 
 }  // namespace
 
-std::uint64_t pass_samples(std::uint64_t index) {
-  // 1, 2, 4, 8, 16, 16, ...
-  return index >= 4 ? kMaxPassSamples : std::min(kMaxPassSamples, std::uint64_t(1) << index);
+std::uint64_t pass_end(std::uint64_t sample) {
+  if (sample >= kMaxPassSamples) return (sample / kMaxPassSamples + 1) * kMaxPassSamples;
+  std::uint64_t end = 1;  // 1, 2, 4, 8, 16
+  while (end <= sample) end *= 2;
+  return end;
+}
+
+bool is_pass_end(std::uint64_t sample) {
+  return sample == 0 || (sample >= kMaxPassSamples ? sample % kMaxPassSamples == 0 : (sample & (sample - 1)) == 0);
 }
 
 void RenderCounters::add(const PassResult& pass) {
@@ -93,8 +99,9 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
     return result;
   }
   for (std::uint64_t index = result.passes; done < s.spp; index++) {
-    std::uint64_t n = std::min(pass_samples(index), s.spp - done);
-    params.first_sample = uint(done);
+    const std::uint64_t first = s.first_sample + done;  // the schedule's pass that holds it
+    const std::uint64_t n = std::min(pass_end(first) - first, s.spp - done);
+    params.first_sample = uint(first);
     params.sample_count = uint(n);
     PassResult pass_result;
     try {
@@ -127,7 +134,7 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
     // user's trade of time for accuracy: every pass ends a correct image of its spp.
     bool stop = interrupt_signal() != 0 || (s.time_budget > 0.0 && elapsed >= s.time_budget) ||
                 (s.target_error > 0.0 && done >= kMinSamplesForError &&
-                 result.film.relative_standard_error() <= s.target_error);
+                 result.film.per_pixel_relative_error() <= s.target_error);
     if (h.save && done < s.spp && (stop || seconds_since(saved) >= h.save_seconds)) {
       h.save(result);
       saved = Clock::now();

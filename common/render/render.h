@@ -23,14 +23,15 @@ struct Scene;
 struct RenderSettings {
   int width = 512;
   int height = 512;
-  std::uint64_t spp = 1;
+  std::uint64_t spp = 1;           // how many samples of each pixel this render adds
+  std::uint64_t first_sample = 0;  // the index of the first (--samples FIRST:COUNT; --spp N is 0:N)
   std::uint32_t seed = 0;
   glm::vec3 sky{0.0f};
   std::uint32_t roulette = kRouletteFixed;  // stage2 onwards
   std::uint32_t depth_cap = 1000;           // stage2 onwards: a safety net only
   double time_budget = 0.0;                 // seconds; > 0: stop after the pass that spends it
-  double target_error = 0.0;                // > 0: stop once the estimated relative standard
-                                            // error of the image mean is below it
+  double target_error = 0.0;                // > 0: stop once the estimated per-pixel relative
+                                            // error (Film::per_pixel_relative_error) is below it
   bool all_features = false;                // the general kernel, not the one specialised
                                             // to the scene's features (--all-features)
   std::uint32_t accel = kAccelBvh;          // kAccelBvh or kAccelNone (--accel): how the
@@ -69,7 +70,7 @@ struct RenderResult {
   double seconds = 0.0;         // wall time of the passes
   double kernel_seconds = 0.0;  // time the kernels ran (GPU: timestamp queries)
   RenderCounters counters;
-  std::uint64_t passes = 0;  // passes done: the next pass's place in the schedule
+  std::uint64_t passes = 0;  // passes done (the schedule follows from the samples done)
   std::string device_error;  // set when the backend failed (exit 4), or when the Vulkan
                              // driver cut a pass short (a wrong pass is never added): the
                              // film has the samples done before it
@@ -80,11 +81,19 @@ struct RenderResult {
 // watchdog) and the progress line moves.
 constexpr std::uint64_t kMaxPassSamples = 16;
 
+// Largest sample index + 1 a render can address (FrameParams.first_sample is 32 bits).
+constexpr std::uint64_t kSampleIndexLimit = std::uint64_t(1) << 32;
+
 // --target-error trusts the variance estimate only after this many samples per pixel.
 constexpr std::uint64_t kMinSamplesForError = 16;
 
-// Samples in pass number `index` (0, 1, ...): 1, 2, 4, ... up to kMaxPassSamples.
-std::uint64_t pass_samples(std::uint64_t index);
+// The pass schedule, one for every render: passes end at the sample indices 1, 2, 4, 8, 16
+// and every multiple of kMaxPassSamples after that (passes of 1, 1, 2, 4, 8, 16, 16, ...
+// samples). A render of the samples FIRST ... FIRST + COUNT - 1 runs the parts of these
+// passes that fall in its range, so parts split at pass ends add the same passes as one
+// run, and their merge is that run bit for bit. Returns where the pass holding `sample` ends.
+std::uint64_t pass_end(std::uint64_t sample);
+bool is_pass_end(std::uint64_t sample);  // 0 too: the start of the first pass
 
 // The parameters every pass shares (the first sample index and count are set per pass).
 FrameParams make_frame_params(const Scene& scene, const RenderSettings& settings);

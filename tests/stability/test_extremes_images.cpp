@@ -125,6 +125,7 @@ TEST_CASE("stability: radiance from 1e-20 to 1e20 neither overflows nor flushes 
       CHECK(r.film.mean_luminance() / e_f == Approx(unit_mean).epsilon(1e-5));
       CHECK(mean_sample_variance(r.film) / (e_f * e_f) == Approx(unit_var).epsilon(1e-4));
       CHECK(std::isfinite(r.film.relative_standard_error()));
+      CHECK(std::isfinite(r.film.per_pixel_relative_error()));
       std::vector<float> rgb = r.film.mean_rgb();
       for (float v : rgb) {
         if (!(std::isfinite(v) && v > 0.0f)) FAIL("pixel value " << v);

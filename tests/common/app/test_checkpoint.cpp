@@ -70,7 +70,7 @@ TEST_CASE("checkpoint: a render resumed from any pass equals the uninterrupted o
   saving.save = [&](const RenderResult& r) { states.push_back(r); };
   RenderResult again = test::render_on("cpu", stage4::kernels(), scene, s, saving);
   CHECK(again.film.sums() == whole.film.sums());
-  REQUIRE(states.size() == 5);  // after 1, 3, 7, 15, 31 spp; never after the last (cut) pass
+  REQUIRE(states.size() == 6);  // after 1, 2, 4, 8, 16, 32 spp; never after the last (cut) pass
 
   const std::uint64_t key = render_key("stage4_direct_indirect", scene, s);
   for (const RenderResult& state : states) {

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "common/base/error.h"
@@ -43,12 +44,46 @@ TEST_CASE("film: variance and relative standard error follow the samples", "[fil
   CHECK(film.relative_standard_error() == Approx(std::sqrt(0.25 * (100.0 / 99.0) / 100.0)));
 }
 
-TEST_CASE("render: passes double up to the cap, independent of timing", "[film]") {
-  CHECK(pass_samples(0) == 1);
-  CHECK(pass_samples(1) == 2);
-  CHECK(pass_samples(3) == 8);
-  CHECK(pass_samples(4) == kMaxPassSamples);
-  CHECK(pass_samples(1000) == kMaxPassSamples);
+TEST_CASE("film: the per-pixel relative error is the RMS of the pixels' standard errors over the image mean",
+          "[film]") {
+  // Hand-made sums. Pixel 0: n samples of luminance 0 and 4 alternately (mean 2, sample
+  // variance 4n/(n-1)); pixel 1: a constant 2 (white, variance 0). Image mean 2.
+  const std::uint64_t n = 64;
+  Film film(2, 1);
+  std::vector<double> sums = {2.0 * n, 2.0 * n, 2.0 * n, 16.0 * (n / 2),  // sum of lum^2: (n/2) x 4^2
+                              2.0 * n, 2.0 * n, 2.0 * n, 4.0 * n};
+  film.restore(n, sums);
+  double var0 = 4.0 * n / (n - 1.0);
+  CHECK(film.sample_variance(0, 0) == Approx(var0));
+  CHECK(film.pixel_standard_error(0, 0) == Approx(std::sqrt(var0 / n)));
+  CHECK(film.pixel_standard_error(1, 0) == Approx(0.0).margin(1e-12));
+  // RMS over the 2 pixels of (sqrt(var0/n), 0), over the mean 2.
+  CHECK(film.per_pixel_relative_error() == Approx(std::sqrt(0.5 * var0 / n) / 2.0));
+  // The image mean's error is sqrt(pixels) = sqrt(2) times smaller here.
+  CHECK(film.relative_standard_error() == Approx(film.per_pixel_relative_error() / std::sqrt(2.0)));
+
+  // Colour: the variance is of the luminance (Rec. 709), and so is the mean it is divided by.
+  Film red(1, 1);
+  red.restore(4, {4.0, 0.0, 0.0, 0.2126 * 0.2126 * 8.0});  // samples 0, 2, 0, 2 of pure red: lum 0 or 0.4252
+  double lum_var = 0.2126 * 0.2126 * (8.0 - 4.0 * 4.0 / 4.0) / 3.0;
+  CHECK(red.per_pixel_relative_error() == Approx(std::sqrt(lum_var / 4.0) / 0.2126));
+}
+
+TEST_CASE("film: the per-pixel error is 0 when unknown or for a black image, and never a false 0", "[film]") {
+  Film none(3, 2);
+  CHECK(none.per_pixel_relative_error() == 0.0);  // 0 spp
+  none.restore(1, std::vector<double>(24, 1.0));
+  CHECK(none.per_pixel_relative_error() == 0.0);  // 1 spp: no variance yet
+  Film black(3, 2);
+  black.restore(16, std::vector<double>(24, 0.0));
+  CHECK(black.per_pixel_relative_error() == 0.0);  // mean 0: nothing to be relatively wrong about
+  CHECK(std::isfinite(black.relative_standard_error()));
+  // Sums that are not finite: infinity, so that --target-error never stops on them.
+  Film broken(1, 1);
+  broken.restore(16, {std::numeric_limits<double>::infinity(), 0.0, 0.0, 1.0});
+  CHECK(broken.per_pixel_relative_error() == std::numeric_limits<double>::infinity());
+  broken.restore(16, {std::nan(""), 0.0, 0.0, 1.0});
+  CHECK(broken.per_pixel_relative_error() == std::numeric_limits<double>::infinity());
 }
 
 TEST_CASE("png: exposure, sRGB curve and clamp", "[image]") {

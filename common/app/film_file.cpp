@@ -1,0 +1,210 @@
+// The film as a file (film_file.h): what identifies a render, the sample ranges, reading a
+// part back from its .exr and adding parts of one render up.
+#include "common/app/film_file.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include <OpenImageIO/imageio.h>
+
+#include "common/app/checkpoint.h"
+#include "common/base/error.h"
+#include "common/scene/scene.h"
+
+namespace pt {
+
+const char* const kFilmSumChannels[4] = {"R", "G", "B", "YY"};
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& path, const std::string& why) {
+  throw Error(kExitBadScene, "'" + path + "' " + why);
+}
+
+std::string hex64(std::uint64_t v) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", (unsigned long long)v);
+  return text;
+}
+
+std::string range_text(const SampleRange& r) { return std::to_string(r.first) + ":" + std::to_string(r.count); }
+
+}  // namespace
+
+std::string format_ranges(const std::vector<SampleRange>& ranges) {
+  std::string text;
+  for (const SampleRange& r : ranges) text += (text.empty() ? "" : ",") + range_text(r);
+  return text;
+}
+
+std::vector<SampleRange> parse_ranges(const std::string& text, const std::string& where) {
+  std::vector<SampleRange> ranges;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    std::size_t end = text.find(',', at);
+    if (end == std::string::npos) end = text.size();
+    const std::string item = text.substr(at, end - at);
+    const std::size_t colon = item.find(':');
+    unsigned long long first = 0, count = 0;
+    int used = 0;
+    if (colon == std::string::npos || std::sscanf(item.c_str(), "%llu:%llu%n", &first, &count, &used) != 2 ||
+        used != int(item.size()) || count == 0) {
+      refuse(where, "has a damaged sample range '" + item + "' in its pt:samples");
+    }
+    ranges.push_back({first, count});
+    at = end + 1;
+  }
+  if (ranges.empty()) refuse(where, "holds no samples (its pt:samples is empty)");
+  return ranges;
+}
+
+FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSettings& s) {
+  FilmIdentity id;
+  id.stage = stage;
+  id.scene_hash = hex64(scene_hash(scene));
+  // The camera as the kernel sees it depends on the image's aspect: hash its bytes.
+  const Camera camera = make_camera(scene, float(s.width) / float(s.height));
+  std::uint64_t h = 14695981039346656037ull;
+  const unsigned char* bytes = reinterpret_cast<const unsigned char*>(&camera);
+  for (std::size_t i = 0; i < sizeof camera; i++) h = (h ^ bytes[i]) * 1099511628211ull;
+  char text[256];
+  std::snprintf(text, sizeof text, "%dx%d, sky %.9g,%.9g,%.9g, rr %s, depth cap %u, camera %s", s.width, s.height,
+                double(s.sky.x), double(s.sky.y), double(s.sky.z), s.roulette == kRouletteThroughput ? "throughput" : "fixed",
+                unsigned(s.depth_cap), hex64(h).c_str());
+  id.options = text;
+  id.seed = s.seed;
+  return id;
+}
+
+FilmPart read_film_part(const std::string& path) {
+  using namespace OIIO;
+  std::unique_ptr<ImageInput> in = ImageInput::open(path);
+  if (!in) {
+    std::string why = OIIO::geterror();
+    refuse(path, "cannot be read as an image (" + why.substr(0, why.find('\n')) + "); give the .exr parts --out wrote");
+  }
+  const ImageSpec& spec = in->spec();
+  auto text = [&](const char* name) {
+    const std::string value = spec.get_string_attribute(name);
+    if (value.empty()) {
+      refuse(path, std::string("has no ") + name +
+                       ": it is not a part written by a stage's --out .exr (render the part again as .exr)");
+    }
+    return value;
+  };
+  FilmPart part;
+  part.path = path;
+  part.id.stage = text("pt:stage");
+  part.id.scene_hash = text("pt:scene_hash");
+  part.id.options = text("pt:options");
+  const std::string seed = text("pt:seed");
+  part.id.seed = std::uint32_t(std::strtoul(seed.c_str(), nullptr, 10));
+  part.scene = spec.get_string_attribute("pt:scene");
+  part.backend = spec.get_string_attribute("pt:backend");
+  part.ranges = parse_ranges(text("pt:samples"), path);
+  std::uint64_t spp = 0;
+  for (const SampleRange& r : part.ranges) spp += r.count;
+  // The sums, from the 32-bit halves of each double (a channel of another format or a
+  // missing one: not a part).
+  int index[8];
+  for (int k = 0; k < 4; k++) {
+    for (int half = 0; half < 2; half++) {
+      const std::string name = std::string("film.") + kFilmSumChannels[k] + (half ? ".lo" : ".hi");
+      const int c = spec.channelindex(name);
+      if (c < 0 || spec.channelformat(c) != TypeDesc::UINT) {
+        refuse(path, "has no channel " + name + " of 32-bit integers: it is not a part written by a stage's --out .exr");
+      }
+      index[2 * k + half] = c;
+    }
+  }
+  const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
+  std::vector<std::uint32_t> data(pixels * std::size_t(spec.nchannels));
+  for (int c = 0; c < spec.nchannels; c++) {
+    if (spec.channelformat(c).size() != 4) refuse(path, "has a channel that is not 32 bits: not a part");
+  }
+  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::UNKNOWN, data.data())) {
+    std::string why = in->geterror();
+    refuse(path, "is damaged (" + why.substr(0, why.find('\n')) + ")");
+  }
+  std::vector<double> sums(4 * pixels);
+  for (std::size_t p = 0; p < pixels; p++) {
+    const std::uint32_t* v = &data[p * std::size_t(spec.nchannels)];
+    for (int k = 0; k < 4; k++) {
+      const std::uint64_t bits = (std::uint64_t(v[index[2 * k]]) << 32) | v[index[2 * k + 1]];
+      std::memcpy(&sums[4 * p + std::size_t(k)], &bits, sizeof(double));
+    }
+  }
+  part.film = Film(spec.width, spec.height);
+  part.film.restore(spp, std::move(sums));
+  return part;
+}
+
+FilmPart merge_film_parts(std::vector<FilmPart> parts, std::vector<std::string>& notes) {
+  if (parts.empty()) throw Error(kExitBadOption, "no parts to merge");
+  const FilmPart& ref = parts.front();
+  auto differs = [&](const FilmPart& p, const char* field, const std::string& mine, const std::string& theirs) {
+    if (mine != theirs) {
+      refuse(p.path, std::string("is a part of another render: its ") + field + " is '" + mine + "', '" + ref.path +
+                         "' has '" + theirs + "'; merge only parts of one render");
+    }
+  };
+  for (const FilmPart& p : parts) {
+    differs(p, "stage", p.id.stage, ref.id.stage);
+    differs(p, "scene (content hash)", p.id.scene_hash, ref.id.scene_hash);
+    differs(p, "options", p.id.options, ref.id.options);
+    differs(p, "seed", std::to_string(p.id.seed), std::to_string(ref.id.seed));
+    differs(p, "size", std::to_string(p.film.width()) + "x" + std::to_string(p.film.height()),
+            std::to_string(ref.film.width()) + "x" + std::to_string(ref.film.height()));
+    if (p.backend != ref.backend) {
+      notes.push_back("'" + p.path + "' was rendered on " + p.backend + ", '" + ref.path + "' on " + ref.backend +
+                      ": the merge equals one run to float rounding, not bit for bit");
+    }
+  }
+  // Every range with the part that holds it, in sample order: no sample may be in two parts.
+  struct Held {
+    SampleRange range;
+    std::size_t part;
+  };
+  std::vector<Held> held;
+  for (std::size_t i = 0; i < parts.size(); i++) {
+    for (const SampleRange& r : parts[i].ranges) held.push_back({r, i});
+  }
+  std::sort(held.begin(), held.end(), [](const Held& a, const Held& b) { return a.range.first < b.range.first; });
+  std::vector<SampleRange> merged;
+  for (std::size_t i = 0; i < held.size(); i++) {
+    const SampleRange& r = held[i].range;
+    if (i > 0) {
+      const Held& before = held[i - 1];
+      const std::uint64_t end = before.range.first + before.range.count;
+      if (r.first < end) {
+        refuse(parts[held[i].part].path, "holds samples " + range_text(r) + ", which overlap the samples " +
+                                             range_text(before.range) + " of '" + parts[before.part].path +
+                                             "'; merge parts with separate --samples ranges");
+      }
+      if (r.first > end) {
+        notes.push_back("samples " + range_text({end, r.first - end}) +
+                        " are in no part: the merge is an image of the samples it has");
+      }
+    }
+    if (!merged.empty() && merged.back().first + merged.back().count == r.first) {
+      merged.back().count += r.count;
+    } else {
+      merged.push_back(r);
+    }
+  }
+  // The sums in the order of the parts' first samples, as one run adds its passes.
+  std::vector<std::size_t> order(parts.size());
+  for (std::size_t i = 0; i < order.size(); i++) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return parts[a].ranges.front().first < parts[b].ranges.front().first;
+  });
+  FilmPart out = parts[order[0]];
+  for (std::size_t k = 1; k < order.size(); k++) out.film.merge(parts[order[k]].film);
+  out.ranges = merged;
+  out.path.clear();
+  return out;
+}
+
+}  // namespace pt

@@ -1,0 +1,65 @@
+// The film as a file: an .exr written by --out is an ordinary RGB image that also carries
+// what merging it with other parts of the same render needs (the contract (README.md),
+// "Parts, merging and comparing"): the film's per-pixel sums in full double precision, the
+// estimated variance of each pixel, and metadata naming the stage, the scene's content,
+// the image-changing options, the seed and the sample ranges it holds. pt_merge
+// (tools/pt_merge.cpp) adds parts up. Not in the article: the article's estimators are
+// sums of independent samples, which is what makes a frame splittable at all.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/render/film.h"
+#include "common/render/render.h"
+
+namespace pt {
+
+struct Scene;
+
+// The samples FIRST ... FIRST + COUNT - 1 of every pixel.
+struct SampleRange {
+  std::uint64_t first = 0;
+  std::uint64_t count = 0;
+};
+
+// "0:16,32:16", and back (throws pt::Error(kExitBadScene) naming `where` when malformed).
+std::string format_ranges(const std::vector<SampleRange>& ranges);
+std::vector<SampleRange> parse_ranges(const std::string& text, const std::string& where);
+
+// What every part of one render shares: parts that differ in any of it are refused.
+struct FilmIdentity {
+  std::string stage;       // "stage4_direct_indirect"
+  std::string scene_hash;  // the scene's content (scene_hash()), 16 hex digits
+  std::string options;     // the options that change the image, as text ("64x64, sky 0,0,0, ...")
+  std::uint32_t seed = 0;
+};
+
+FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSettings& settings);
+
+// One part as read back from its .exr.
+struct FilmPart {
+  std::string path;
+  FilmIdentity id;
+  std::string scene;    // --scene as it was given (shown, not compared)
+  std::string backend;  // "cpu (2 threads)", ...: parts of two backends agree to float rounding
+  std::vector<SampleRange> ranges;
+  Film film{1, 1};
+};
+
+// The EXR's channels: R, G, B (the mean radiance), Y.variance (the estimated variance of the
+// pixel's mean luminance), then film.<S>.hi and film.<S>.lo for S in R, G, B, YY: the two
+// 32-bit halves of each double sum, so a merge restores the sums bit for bit.
+extern const char* const kFilmSumChannels[4];
+
+// Reads a part, or throws pt::Error(kExitBadScene) naming the file and what is missing.
+FilmPart read_film_part(const std::string& path);
+
+// Adds parts of one render up, in the order of their first samples. Throws
+// pt::Error(kExitBadScene) naming the file and the field for a part of another render
+// (stage, scene, options, seed, size) or samples that two parts both hold; `notes` gets a
+// line for each gap in the samples and for parts of different backends.
+FilmPart merge_film_parts(std::vector<FilmPart> parts, std::vector<std::string>& notes);
+
+}  // namespace pt
