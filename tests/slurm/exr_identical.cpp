@@ -1,13 +1,19 @@
-// pt_exr_identical A.exr B.exr: whether two EXR images hold the same pixels bit for bit, in
-// every channel, each read in its own type (float, or the uint halves of the film's doubles;
-// the Slurm and GNU parallel tests compare a merged render with a one-run render through
-// it). Exit 0 identical, 1 different (the first difference and the count on stdout), 2
-// unreadable, or of another size, channel list or channel type.
+// pt_exr_identical [--tolerance NAME=REL]... A.exr B.exr: whether two EXR images hold the
+// same pixels bit for bit, in every channel, each read in its own type (float, or the uint
+// halves of the film's doubles; the Slurm and GNU parallel tests compare a merged render with
+// a one-run render through it). --tolerance lets the float channel NAME, or the double whose
+// halves are NAME.hi and NAME.lo, differ by REL relative (pt_merge's squared-luminance sums
+// may differ from the one run's in their last bits: docs/film.md). Exit 0 identical (within
+// the tolerances), 1 different (the first difference and the count on stdout), 2 unreadable,
+// or of another size, channel list or channel type.
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -46,10 +52,24 @@ bool read(const char* path, Image& image) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: pt_exr_identical A.exr B.exr\n");
+  std::map<std::string, double> tolerance;  // channel (or double) name -> relative tolerance
+  int arg = 1;
+  for (; arg + 1 < argc && std::strcmp(argv[arg], "--tolerance") == 0; arg += 2) {
+    const std::string spec = argv[arg + 1];
+    const auto eq = spec.find('=');
+    char* end = nullptr;
+    const double rel = eq == std::string::npos ? -1.0 : std::strtod(spec.c_str() + eq + 1, &end);
+    if (eq == std::string::npos || !(rel >= 0.0) || *end != '\0') {
+      std::fprintf(stderr, "pt_exr_identical: --tolerance wants NAME=REL, not '%s'\n", spec.c_str());
+      return 2;
+    }
+    tolerance[spec.substr(0, eq)] = rel;
+  }
+  if (argc - arg != 2) {
+    std::fprintf(stderr, "usage: pt_exr_identical [--tolerance NAME=REL]... A.exr B.exr\n");
     return 2;
   }
+  argv += arg - 1;
   Image a, b;
   if (!read(argv[1], a) || !read(argv[2], b)) return 2;
   if (a.width != b.width || a.height != b.height) {
@@ -71,14 +91,68 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::uint64_t differing = 0;
+  const std::size_t pixels = std::size_t(a.width) * a.height;
+  auto channel = [](const Image& image, const std::string& name) {
+    for (std::size_t c = 0; c < image.channels.size(); ++c)
+      if (image.channels[c] == name) return int(c);
+    return -1;
+  };
+  // The channels with a tolerance: compared as values, and left out of the bitwise check.
+  std::vector<std::string> loose;
+  for (const auto& [name, rel] : tolerance) {
+    const int fa = channel(a, name), fb = channel(b, name);
+    const int ha = channel(a, name + ".hi"), la = channel(a, name + ".lo");
+    const int hb = channel(b, name + ".hi"), lb = channel(b, name + ".lo");
+    const bool is_float = fa >= 0 && fb >= 0 && a.types[fa] == OIIO::TypeDesc::FLOAT;
+    const bool is_double = ha >= 0 && la >= 0 && hb >= 0 && lb >= 0 && a.types[ha] == OIIO::TypeDesc::UINT;
+    if (!is_float && !is_double) {
+      std::fprintf(stderr, "pt_exr_identical: --tolerance %s: no float channel %s nor uint halves %s.hi, %s.lo in both\n",
+                   name.c_str(), name.c_str(), name.c_str(), name.c_str());
+      return 2;
+    }
+    auto value = [&](const Image& image, int f, int h, int l, std::size_t p) {
+      if (is_float) {
+        float v;
+        std::memcpy(&v, image.planes[f].data() + p * 4, 4);
+        return double(v);
+      }
+      std::uint32_t hi, lo;
+      std::memcpy(&hi, image.planes[h].data() + p * 4, 4);
+      std::memcpy(&lo, image.planes[l].data() + p * 4, 4);
+      const std::uint64_t bits = (std::uint64_t(hi) << 32) | lo;
+      double v;
+      std::memcpy(&v, &bits, 8);
+      return v;
+    };
+    double worst = 0.0;
+    for (std::size_t p = 0; p < pixels; ++p) {
+      const double va = value(a, fa, ha, la, p), vb = value(b, fb, hb, lb, p);
+      if (va == vb) continue;
+      const double diff = std::fabs(va - vb) / std::fmax(std::fabs(va), std::fabs(vb));
+      worst = std::fmax(worst, diff);
+      if (diff > rel && differing++ == 0)
+        std::printf("first difference: pixel %zu,%zu %s: %.17g and %.17g (relative %.3g, allowed %.3g)\n",
+                    p % a.width, p / a.width, name.c_str(), va, vb, diff, rel);
+    }
+    std::printf("%s: largest relative difference %.3g (allowed %.3g)\n", name.c_str(), worst, rel);
+    if (is_float) {
+      loose.push_back(name);
+    } else {
+      loose.push_back(name + ".hi");
+      loose.push_back(name + ".lo");
+    }
+  }
   for (const auto& [i, j] : common) {
+    bool skip = false;
+    for (const auto& name : loose) skip = skip || a.channels[i] == name;
+    if (skip) continue;
     if (a.types[i] != b.types[j]) {
       std::fprintf(stderr, "pt_exr_identical: channel %s is %s in %s and %s in %s\n", a.channels[i].c_str(),
                    a.types[i].c_str(), argv[1], b.types[j].c_str(), argv[2]);
       return 2;
     }
     const std::size_t size = a.types[i].size();
-    for (std::size_t p = 0; p < std::size_t(a.width) * a.height; ++p) {
+    for (std::size_t p = 0; p < pixels; ++p) {
       const unsigned char* va = a.planes[i].data() + p * size;
       const unsigned char* vb = b.planes[j].data() + p * size;
       if (std::memcmp(va, vb, size) == 0) continue;
@@ -105,6 +179,7 @@ int main(int argc, char** argv) {
     std::printf("%llu values differ\n", (unsigned long long)differing);
     return 1;
   }
-  std::printf("identical: %dx%d, %zu channels\n", a.width, a.height, a.channels.size());
+  std::printf("identical: %dx%d, %zu channels%s\n", a.width, a.height, a.channels.size(),
+              loose.empty() ? "" : " (some within their tolerance)");
   return 0;
 }
