@@ -5,7 +5,8 @@ scene) and docs/results.md: the machine, the command, the time each stage and ba
 needs to reach 10%, 3% and 1% relative RMSE, the efficiency ratios stage3/stage2 and
 stage4/stage3, CPU against GPU samples per second, the fitted slope of log error against
 log time (-1/2 for an unbiased estimator), rays per second, specialised kernels, and
-rays per second against the triangle count with the BVH and Embree (issue 17).
+rays per second against the triangle count with the BVH and Embree (issue 17), and
+issue 22's times to 10%, 3% and 1% read off the curves and the split's cost (report_error_targets.py).
 Hand-written findings come from docs/results/notes.md and accel_notes.md, kept between
 runs. Every table comes from the CSV files in the folder, so a run of one section
 (pt_bench --section accel) keeps the others' tables as their last full run left them."""
@@ -23,6 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from report_accel import accel_section, read_keys  # noqa: E402  (bench/, beside this script)
+from report_error_targets import error_targets_section, split_section  # noqa: E402
 
 LEVELS = (0.10, 0.03, 0.01)
 MIN_FIT_SPP = 16        # below this, fixed costs per render bend the curve
@@ -178,6 +180,8 @@ def main():
                     rows[-1]["spp"], float(rows[-1]["rel_rmse"]), samples_per_s(rows), s[0], s[1]))
             md.append("")
 
+        md += error_targets_section(runs, small_file(a.results, "bench_date.txt"))
+
         md += ["## Efficiency ratios and CPU against GPU", "",
                "Efficiency 1/(MSE x time) at each run's last checkpoint; a ratio above 1 means the later "
                "stage reaches the same error sooner. GPU/CPU is the ratio of samples per second.", "",
@@ -231,6 +235,8 @@ def main():
                 r["scene"], r["stage"], r["backend"], float(r["specialised_samples_per_s"]),
                 float(r["general_samples_per_s"]), float(r["ratio"]), float(r["cpu_ratio"])))
         md.append("")
+
+    md += split_section(a.results)
 
     with open(a.markdown + ".tmp", "w") as f:
         f.write("\n".join(md) + "\n")
