@@ -118,7 +118,7 @@ TEST_CASE("every stage: the GPU's image with the BVH is its image without, and a
 // The BVH on both backends over a scene of more than 100k triangles: the Cornell box with a
 // diffuse icosphere of 20 x 72^2 = 103,680 triangles in it. Each stage's CPU and GPU images
 // of one seed agree to rounding: the traversal is one source (common/kernel/bvh.glsl).
-TEST_CASE("stages 1-4: CPU and GPU agree to rounding through the BVH of a 100k-triangle scene", "[gpu][bvh]") {
+TEST_CASE("stages 1-4: CPU and GPU agree to rounding through the BVH of a 100k-triangle scene", "[gpu][bvh][large]") {
   Scene scene = make_builtin_scene("cornell");
   add_icosphere(scene, glm::vec3(0.25f, 0.35f, 0.45f), 0.3f, 72, scene.add_material(make_diffuse(glm::vec3(0.7f))));
   build_light_table(scene);

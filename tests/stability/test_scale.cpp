@@ -56,7 +56,7 @@ TEST_CASE("stability: the floor under a square light renders its closed form at 
 }
 
 TEST_CASE("stability: a furnace of 1.3 million triangles gives Le / (1 - albedo) through the BVH on stages 2-4",
-          "[stability][statistical][bvh]") {
+          "[stability][statistical][bvh][large]") {
   // The closed form holds for any closed surface, whatever its tessellation: here the
   // inside of an icosphere of 20 x 256^2 triangles (builtin:furnace_mesh), searched through
   // one BVH that all three stages share. Leaks between the mesh's triangles, a box test

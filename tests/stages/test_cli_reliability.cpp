@@ -219,7 +219,7 @@ TEST_CASE("cli: a device whose limits cannot hold the image is refused before al
 }
 
 TEST_CASE("cli: a scene larger than the device's storage-buffer range is refused with exit 4 and the numbers",
-          "[reliability][devices][bvh]") {
+          "[reliability][devices][bvh][large]") {
   if (!have_vulkan_device()) SUCCEED("no Vulkan device here: nothing to test");
   if (!have_vulkan_device()) return;
   // builtin:furnace_mesh: 1,310,720 triangles of 48 bytes; small_limits allows 65536 bytes.

@@ -11,6 +11,7 @@
 
 #include "common/scene/bvh.h"
 #include "common/scene/scene.h"
+#include "tests/support/random_scenes.h"
 #include "cpu/kernel_prelude.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
@@ -120,26 +121,9 @@ void check(const pt::Scene& s, std::mt19937& rng, int rays, const char* what, st
 
 TEST_CASE("bvh: the traversal finds the brute force's hit bit for bit on random scenes", "[bvh]") {
   std::mt19937 rng(777);
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  std::uniform_int_distribution<int> exponent(-6, 6);
   for (int scene = 0; scene < 24; scene++) {
     pt::Scene s;
-    uint m = s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-    const float scale = std::pow(10.0f, float(exponent(rng)));  // 1e-6 ... 1e6
-    const glm::vec3 offset = scale * float(scene % 3) * 50.0f * glm::vec3(unit(rng), unit(rng), unit(rng));
-    const int count = 2 + scene * 25;
-    auto point = [&] { return offset + scale * glm::vec3(unit(rng), unit(rng), unit(rng)); };
-    for (int i = 0; i < count; i++) {
-      glm::vec3 a = point(), b = 0.2f * (point() - a) + a, c = 0.2f * (point() - a) + a;
-      if (i % 7 == 3) c = a + 1e-4f * (b - a);                   // a sliver
-      if (i % 9 == 4) c = b;                                      // zero area
-      if (i % 13 == 9) {                                          // a copy: equal distances
-        const pt::Triangle& earlier = s.triangles[std::size_t(i) / 3];
-        a = earlier.p0, b = earlier.p1, c = earlier.p2;
-      }
-      if (i % 11 == 5 && i > 0) a = s.triangles.back().p1, b = s.triangles.back().p0;  // a shared edge
-      s.add_triangle(a, b, c, m);
-    }
+    const float scale = pt::test::add_random_triangles(s, rng, scene, 2 + scene * 25);
     INFO("scene " << scene << ", scale " << scale);
     check(s, rng, 600, "random");
   }

@@ -1,0 +1,29 @@
+// Random triangle scenes for the BVH tests (see random_scenes.h).
+#include "tests/support/random_scenes.h"
+
+#include <cmath>
+
+namespace pt::test {
+
+float add_random_triangles(Scene& s, std::mt19937& rng, int index, int count) {
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> exponent(-6, 6);
+  uint m = s.add_material(make_diffuse(glm::vec3(0.5f)));
+  const float scale = std::pow(10.0f, float(exponent(rng)));  // 1e-6 ... 1e6
+  const glm::vec3 offset = scale * float(index % 3) * 50.0f * glm::vec3(unit(rng), unit(rng), unit(rng));
+  auto point = [&] { return offset + scale * glm::vec3(unit(rng), unit(rng), unit(rng)); };
+  for (int i = 0; i < count; i++) {
+    glm::vec3 a = point(), b = 0.2f * (point() - a) + a, c = 0.2f * (point() - a) + a;
+    if (i % 7 == 3) c = a + 1e-4f * (b - a);  // a sliver
+    if (i % 9 == 4) c = b;                     // zero area
+    if (i % 13 == 9) {                         // a copy: equal distances
+      const Triangle& earlier = s.triangles[std::size_t(i) / 3];
+      a = earlier.p0, b = earlier.p1, c = earlier.p2;
+    }
+    if (i % 11 == 5 && i > 0) a = s.triangles.back().p1, b = s.triangles.back().p0;  // a shared edge
+    s.add_triangle(a, b, c, m);
+  }
+  return scale;
+}
+
+}  // namespace pt::test

@@ -1,0 +1,16 @@
+// Random triangle scenes for the BVH tests (the traversal of common/kernel/bvh.glsl and the
+// CPU's wide walk, cpu/wide_bvh.h): the hard cases of a nearest-hit search in one soup.
+#pragma once
+
+#include <random>
+
+#include "common/scene/scene.h"
+
+namespace pt::test {
+
+// `count` small triangles at a random scale from 1e-6 to 1e6 (moved off the origin in two
+// scenes of three, by `index`), with slivers, zero-area triangles, exact copies (equal
+// distances) and shared edges mixed in; returns the scale.
+float add_random_triangles(Scene& s, std::mt19937& rng, int index, int count);
+
+}  // namespace pt::test
