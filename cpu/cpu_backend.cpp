@@ -47,6 +47,7 @@ class CpuBackend : public Backend {
       scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();
       // The CPU walks the tree collapsed to 8 children and leaf blocks (wide_bvh.h).
       wide_ = std::make_unique<WideBvh>(build_wide_bvh(*bvh, scene.triangles));
+      scene_.wide_bvh = wide_.get();
     }
   }
 
@@ -56,9 +57,7 @@ class CpuBackend : public Backend {
     result.counters[kCounterNonFinitePixel] = kNoPixel;
     KernelScene scene = scene_;
     scene.counters = result.counters;
-    wide_bvh_to_bind = wide_.get();  // cpu_bind takes it (KernelScene has no field for it)
     kernel_.bind(scene, params);
-    wide_bvh_to_bind = nullptr;
     // Rows are taken a few at a time from a shared counter: cheap load balancing.
     const uint height = params.height, rows_per_task = 4;
     std::atomic<uint> next_row{0};

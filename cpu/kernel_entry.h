@@ -14,9 +14,7 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   triangle_soa_stride = scene.triangle_soa_stride;
   bvh_nodes = scene.bvh_nodes;
   bvh_indices = scene.bvh_indices;
-  // The backend's wide tree, when it was built from this binary one (wide_bvh.h).
-  const pt::WideBvh* wide = pt::wide_bvh_to_bind;
-  wide_bvh = wide != nullptr && scene.bvh_nodes != nullptr && wide->source == scene.bvh_nodes ? wide : nullptr;
+  wide_bvh = scene.bvh_nodes != nullptr ? scene.wide_bvh : nullptr;  // the same tree, wide (wide_bvh.h)
   params = pass;
 }
 

@@ -70,9 +70,4 @@ WideHit wide_bvh_nearest(const WideBvh& bvh, const WideRay& ray, WideHit best, i
 // Whether some triangle is hit closer than t_max.
 bool wide_bvh_occluded(const WideBvh& bvh, const WideRay& ray, float t_max, int lanes = 0);
 
-// The wide tree of the pass being bound: the CPU backend sets it on the thread that calls
-// CpuKernel::bind, and cpu_bind (kernel_entry.h) takes it when it was built from the bound
-// binary tree; KernelScene (common/render/backend.h) has no field for it.
-inline thread_local const WideBvh* wide_bvh_to_bind = nullptr;
-
 }  // namespace pt

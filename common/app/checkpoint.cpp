@@ -73,6 +73,12 @@ void write_all(int fd, const void* data, std::size_t bytes, const std::string& p
 
 }  // namespace
 
+std::uint64_t bytes_hash(const void* data, std::size_t bytes) {
+  Fnv f;
+  f.add(data, bytes);
+  return f.h;
+}
+
 std::uint64_t scene_hash(const Scene& scene) {
   Fnv f;
   f.add_vector(scene.triangles);

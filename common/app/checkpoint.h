@@ -8,6 +8,7 @@
 // are sums of independent samples, which is what makes stopping and continuing exact).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -16,6 +17,9 @@
 namespace pt {
 
 struct Scene;
+
+// A 64-bit FNV-1a hash of `bytes` bytes (the hash the two below are made of).
+std::uint64_t bytes_hash(const void* data, std::size_t bytes);
 
 // A 64-bit FNV-1a hash of the scene's arrays (triangles, spheres, materials, lights): the
 // same content gives the same hash whatever file or path it came from.

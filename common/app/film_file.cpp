@@ -66,9 +66,7 @@ FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSe
   id.scene_hash = hex64(scene_hash(scene));
   // The camera as the kernel sees it depends on the image's aspect: hash its bytes.
   const Camera camera = make_camera(scene, float(s.width) / float(s.height));
-  std::uint64_t h = 14695981039346656037ull;
-  const unsigned char* bytes = reinterpret_cast<const unsigned char*>(&camera);
-  for (std::size_t i = 0; i < sizeof camera; i++) h = (h ^ bytes[i]) * 1099511628211ull;
+  const std::uint64_t h = bytes_hash(&camera, sizeof camera);
   char text[256];
   std::snprintf(text, sizeof text, "%dx%d, sky %.9g,%.9g,%.9g, rr %s, depth cap %u, camera %s", s.width, s.height,
                 double(s.sky.x), double(s.sky.y), double(s.sky.z), s.roulette == kRouletteThroughput ? "throughput" : "fixed",

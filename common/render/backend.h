@@ -16,6 +16,7 @@ namespace pt {
 
 struct Scene;
 struct Bvh;
+struct WideBvh;  // the CPU backend's own form of the BVH (cpu/wide_bvh.h)
 
 // The scene arrays as the CPU kernel sees them (cpu/kernel_bindings.h; the GLSL buffers of gpu/kernel_bindings.glsl).
 struct KernelScene {
@@ -29,6 +30,7 @@ struct KernelScene {
   uint triangle_soa_stride = 0;
   const BvhNode* bvh_nodes = nullptr;  // the BVH (common/scene/bvh.h), or nullptr
   const uint* bvh_indices = nullptr;
+  const WideBvh* wide_bvh = nullptr;   // the same tree for the CPU's SIMD walk, or nullptr
 };
 
 // A stage's kernel compiled as C++ (cpu/kernel_entry.h).

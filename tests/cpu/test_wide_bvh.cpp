@@ -168,26 +168,12 @@ TEST_CASE("wide bvh: coplanar overlaps, copies, one point, one triangle, none, 1
   none.add_material(pt::make_diffuse(glm::vec3(0.5f)));
   check(none, rng, 30, "no triangles");
 
-  pt::Scene copies;  // a grid of quads, every quad three times
-  copies.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  for (int copy = 0; copy < 3; copy++) {
-    for (int x = 0; x < 10; x++) {
-      for (int y = 0; y < 10; y++) {
-        pt::add_quad(copies, {float(x), float(y), 5}, {float(x + 1), float(y), 5}, {float(x + 1), float(y + 1), 5},
-                     {float(x), float(y + 1), 5}, 0u);
-      }
-    }
-  }
+  pt::Scene copies;  // a grid of quads in one plane, every quad three times: ties everywhere
+  pt::test::add_copied_grid(copies, 10);
   check(copies, rng, 1000, "copies in a plane", 50);
 
   pt::Scene spread;  // triangles from 1e-6 to 1e6 in size, at distances to match
-  spread.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  for (int i = 0; i < 500; i++) {
-    float s = std::pow(10.0f, -6.0f + 12.0f * float(i) / 500.0f);
-    glm::vec3 c = s * glm::vec3(unit(rng), unit(rng), unit(rng));
-    spread.add_triangle(c, c + s * glm::vec3(unit(rng), unit(rng), 0.1f), c + s * glm::vec3(0.1f, unit(rng), unit(rng)), 0u);
-  }
+  pt::test::add_spread_triangles(spread, rng, 500);
   check(spread, rng, 2000, "sizes 1e-6 to 1e6");
 }
 

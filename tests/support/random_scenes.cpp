@@ -26,4 +26,26 @@ float add_random_triangles(Scene& s, std::mt19937& rng, int index, int count) {
   return scale;
 }
 
+void add_copied_grid(Scene& s, int n) {
+  uint m = s.add_material(make_diffuse(glm::vec3(0.5f)));
+  for (int copy = 0; copy < 3; copy++) {
+    for (int x = 0; x < n; x++) {
+      for (int y = 0; y < n; y++) {
+        add_quad(s, {float(x), float(y), 5}, {float(x + 1), float(y), 5}, {float(x + 1), float(y + 1), 5},
+                 {float(x), float(y + 1), 5}, m);
+      }
+    }
+  }
+}
+
+void add_spread_triangles(Scene& s, std::mt19937& rng, int count) {
+  uint m = s.add_material(make_diffuse(glm::vec3(0.5f)));
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int i = 0; i < count; i++) {
+    float size = std::pow(10.0f, -6.0f + 12.0f * float(i) / float(count));
+    glm::vec3 c = size * glm::vec3(unit(rng), unit(rng), unit(rng));
+    s.add_triangle(c, c + size * glm::vec3(unit(rng), unit(rng), 0.1f), c + size * glm::vec3(0.1f, unit(rng), unit(rng)), m);
+  }
+}
+
 }  // namespace pt::test

@@ -13,4 +13,10 @@ namespace pt::test {
 // distances) and shared edges mixed in; returns the scale.
 float add_random_triangles(Scene& s, std::mt19937& rng, int index, int count);
 
+// An n x n grid of unit quads in the plane z = 5, every quad three times: ties everywhere.
+void add_copied_grid(Scene& s, int n);
+
+// `count` triangles from 1e-6 to 1e6 in size, each at a distance from the origin to match.
+void add_spread_triangles(Scene& s, std::mt19937& rng, int count);
+
 }  // namespace pt::test

@@ -185,25 +185,11 @@ TEST_CASE("bvh: degenerate scenes: one point, one triangle, none, a plane of cop
   check(none, rng, 50, "no triangles");
 
   pt::Scene copies;  // a grid of quads in one plane, every quad three times: ties everywhere
-  copies.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  for (int copy = 0; copy < 3; copy++) {
-    for (int x = 0; x < 12; x++) {
-      for (int y = 0; y < 12; y++) {
-        pt::add_quad(copies, {float(x), float(y), 5}, {float(x + 1), float(y), 5}, {float(x + 1), float(y + 1), 5},
-                     {float(x), float(y + 1), 5}, 0u);
-      }
-    }
-  }
+  pt::test::add_copied_grid(copies, 12);
   check(copies, rng, 2000, "copies in a plane", 100);
 
   pt::Scene spread;  // triangles from 1e-6 to 1e6 in size, at distances to match
-  spread.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  for (int i = 0; i < 600; i++) {
-    float s = std::pow(10.0f, -6.0f + 12.0f * float(i) / 600.0f);
-    glm::vec3 c = s * glm::vec3(unit(rng), unit(rng), unit(rng));
-    spread.add_triangle(c, c + s * glm::vec3(unit(rng), unit(rng), 0.1f), c + s * glm::vec3(0.1f, unit(rng), unit(rng)), 0u);
-  }
+  pt::test::add_spread_triangles(spread, rng, 600);
   check(spread, rng, 3000, "sizes 1e-6 to 1e6");
 }
 
