@@ -31,6 +31,8 @@ set -euo pipefail
 me=render_array.sh
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 die() { echo "$me: $*" >&2; exit 2; }
+# shellcheck source=tools/slurm/split_common.sh
+. "$here/split_common.sh"
 usage() {
   echo "usage: $me --out MERGED.exr --spp N [--tasks T] [--stage NAME] [--bin DIR] [--parts DIR] [--cpus-per-task C] [--checkpoint SECONDS] [--sbatch ARG]... [--parsable] [-- STAGE_OPTIONS...]" >&2
   exit 2
@@ -60,19 +62,12 @@ done
 [[ $tasks =~ ^[0-9]{1,6}$ ]] && [ "$tasks" -ge 1 ] || die "--tasks must be a positive integer, not '$tasks'"
 [ -z "$cpus" ] || [[ $cpus =~ ^[0-9]{1,6}$ && $cpus -ge 1 ]] || die "--cpus-per-task must be a positive integer, not '$cpus'"
 command -v sbatch >/dev/null || die "sbatch not found: run this on a Slurm login node (or use tools/slurm/render_parallel.sh)"
-out=$(realpath -m -- "$out")
-[ -n "$parts" ] || parts=${out%.exr}.parts
-parts=$(realpath -m -- "$parts")
-bin=$(realpath -m -- "$bin")
-[ -x "$bin/pt_merge" ] || die "no program $bin/pt_merge (build it, or give --bin)"
+resolve_split_paths
 
-# The arguments every task gets; --list checks them (spp, tasks, stage, stage options) and
-# names the parts.
+# The arguments every task gets.
 part_args=(--bin "$bin" --stage "$stage" --spp "$spp" --parts "$parts" --count "$tasks"
            --checkpoint "$checkpoint" -- "$@")
-mapfile -t part_files < <("$here/render_part.sh" --list "${part_args[@]}" || echo FAILED)
-[ "${part_files[-1]:-FAILED}" != FAILED ] || exit 2
-mkdir -p "$parts" "$(dirname "$out")"
+list_split_parts "${part_args[@]}"
 
 name=pt-$(basename "${out%.exr}")
 array_id=$(sbatch --parsable --job-name="$name" --array="0-$((tasks - 1))" --requeue \

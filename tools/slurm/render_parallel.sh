@@ -27,6 +27,8 @@ set -euo pipefail
 me=render_parallel.sh
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 die() { echo "$me: $*" >&2; exit 2; }
+# shellcheck source=tools/slurm/split_common.sh
+. "$here/split_common.sh"
 usage() {
   echo "usage: $me --out MERGED.exr --spp N [--parts-count T] [--stage NAME] [--bin DIR] [--parts DIR] [--jobs J] [--threads N] [--checkpoint SECONDS] [--sshlogin LOGINS]... [-- STAGE_OPTIONS...]" >&2
   exit 2
@@ -55,17 +57,11 @@ done
 [[ $count =~ ^[0-9]{1,6}$ ]] && [ "$count" -ge 1 ] || die "--parts-count must be a positive integer, not '$count'"
 [[ $jobs =~ ^[0-9]{1,4}$ ]] && [ "$jobs" -ge 1 ] || die "--jobs must be a positive integer, not '$jobs'"
 command -v parallel >/dev/null || die "GNU parallel not found (Debian: sudo apt-get install parallel)"
-out=$(realpath -m -- "$out")
-[ -n "$parts" ] || parts=${out%.exr}.parts
-parts=$(realpath -m -- "$parts")
-bin=$(realpath -m -- "$bin")
-[ -x "$bin/pt_merge" ] || die "no program $bin/pt_merge (build it, or give --bin)"
+resolve_split_paths
 
 part_args=(--bin "$bin" --stage "$stage" --spp "$spp" --parts "$parts" --count "$count"
            --threads "$threads" --checkpoint "$checkpoint" -- "$@")
-mapfile -t part_files < <("$here/render_part.sh" --list "${part_args[@]}" || echo FAILED)
-[ "${part_files[-1]:-FAILED}" != FAILED ] || exit 2
-mkdir -p "$parts" "$(dirname "$out")"
+list_split_parts "${part_args[@]}"
 
 # {} is the part's index; parallel quotes every other argument for the shell (and ssh).
 # --halt now,fail=1: the first failed part stops the others (they keep their checkpoints).
