@@ -7,8 +7,9 @@ stage4/stage3, CPU against GPU samples per second, the fitted slope of log error
 log time (-1/2 for an unbiased estimator), rays per second, specialised kernels, and
 rays per second against the triangle count with the BVH and Embree (issue 17), and
 issue 22's times to 10%, 3% and 1% read off the curves and the split's cost (report_error_targets.py).
-Hand-written findings come from docs/results/notes.md and accel_notes.md, kept between
-runs. Every table comes from the CSV files in the folder, so a run of one section
+Hand-written findings come from docs/results/notes.md, accel_notes.md, split_notes.md,
+sampler_notes.md (bench/sampler_study.py) and cycles_notes.md (bench/cycles/compare.py), kept
+between runs. Every table comes from the CSV files in the folder, so a run of one section
 (pt_bench --section accel) keeps the others' tables as their last full run left them."""
 import argparse
 import csv
@@ -237,6 +238,11 @@ def main():
         md.append("")
 
     md += split_section(a.results)
+    # Hand-written sections of later issues, each measured by its own script (named inside).
+    for name in ("sampler_notes.md", "cycles_notes.md"):
+        path = os.path.join(a.results, name)
+        if os.path.exists(path):
+            md += [open(path).read().rstrip(), ""]
 
     with open(a.markdown + ".tmp", "w") as f:
         f.write("\n".join(md) + "\n")

@@ -10,15 +10,23 @@
 # USES_LIGHT_TABLE: the kernel reads the light table and the point lights (light sampling),
 # so they are uploaded. LAB N: lab N asks the student for this stage's integrator
 # (cmake/Labs.cmake): its build compiles labs/labN.glsl in its place.
+# Tests make kernels that are not stages the same way: INTEGRATOR FILE (instead of
+# DIR/integrator.glsl), NAMESPACE NS (instead of DIR's stageK) and NO_PROGRAM.
 function(pt_add_stage DIR)
-  cmake_parse_arguments(ARG "USES_LIGHT_TABLE" "CPU_GROUPS;LAB" "" ${ARGN})
+  cmake_parse_arguments(ARG "USES_LIGHT_TABLE;NO_PROGRAM" "CPU_GROUPS;LAB;INTEGRATOR;NAMESPACE" "" ${ARGN})
   if(NOT DEFINED ARG_CPU_GROUPS OR PT_CPU_GENERAL_ONLY)
     set(ARG_CPU_GROUPS 0)
   endif()
   string(REGEX MATCH "^stage[0-9]+" ns ${DIR})  # the stage's C++ namespace, e.g. stage4
+  if(DEFINED ARG_NAMESPACE)
+    set(ns ${ARG_NAMESPACE})
+  endif()
   set(src ${PROJECT_SOURCE_DIR}/${DIR})
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${DIR})
   set(integrator "${DIR}/integrator.glsl")
+  if(DEFINED ARG_INTEGRATOR)
+    set(integrator "${ARG_INTEGRATOR}")
+  endif()
   set(cpu_integrator "${integrator}")
   if(DEFINED ARG_LAB AND PT_LAB EQUAL ARG_LAB)
     set(integrator "labs/lab${ARG_LAB}.glsl")
@@ -98,6 +106,8 @@ pt::StageKernels kernels() {
   add_library(pt_${DIR} STATIC ${sources} ${out}/kernels.cpp ${${DIR}_kernel_SPIRV_HEADER})
   target_include_directories(pt_${DIR} PUBLIC ${CMAKE_CURRENT_BINARY_DIR} PRIVATE ${out})
   target_link_libraries(pt_${DIR} PUBLIC pt_common)
-  add_executable(${DIR} ${src}/main.cpp)
-  target_link_libraries(${DIR} PRIVATE pt_${DIR} pt_cpu pt_gpu)
+  if(NOT ARG_NO_PROGRAM)
+    add_executable(${DIR} ${src}/main.cpp)
+    target_link_libraries(${DIR} PRIVATE pt_${DIR} pt_cpu pt_gpu)
+  endif()
 endfunction()

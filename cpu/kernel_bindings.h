@@ -14,6 +14,7 @@ inline FrameParams params;
 inline uint* counters = nullptr;       // kCounterCount event counters, updated atomically
 inline const Light* lights = nullptr;  // the light table (stage4)
 inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
+inline thread_local uvec4 sampler_state = uvec4(0u);  // the sampler's (common/kernel/sampler.glsl)
 // The triangles again as a structure of arrays for the SIMD search (triangle_lanes.h,
 // triangle_soa.h): nullptr means the plain loop over triangles[].
 inline const float* triangle_soa = nullptr;

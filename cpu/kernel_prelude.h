@@ -45,6 +45,15 @@ inline vec4 abs(vec4 v) {
   return vec4(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z), std::fabs(v.w));
 }
 
+// GLSL's bitfieldReverse of a 32-bit word (bit 0 becomes bit 31): the Sobol sampler's
+// mirroring (common/kernel/sampler.glsl). A byte swap, then three swaps inside each byte.
+inline uint bitfieldReverse(uint x) {
+  x = __builtin_bswap32(x);
+  x = ((x & 0x0f0f0f0fu) << 4) | ((x >> 4) & 0x0f0f0f0fu);
+  x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
+  return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
+}
+
 // GLSL's atomic built-ins on buffer memory (the kernel's event counters).
 inline uint atomicAdd(uint& mem, uint data) {
   return std::atomic_ref<uint>(mem).fetch_add(data);

@@ -20,6 +20,7 @@ layout(std430, set = 0, binding = 7) readonly buffer LightBuffer { Light lights[
 layout(std430, set = 0, binding = 9) readonly buffer BvhNodeBuffer { BvhNode bvh_nodes[]; };
 layout(std430, set = 0, binding = 10) readonly buffer BvhIndexBuffer { uint bvh_indices[]; };
 uint rng_state;  // the random-number state of one invocation
+uvec4 sampler_state;  // the sampler's state of one invocation (common/kernel/sampler.glsl)
 
 // The triangles again in a uniform buffer when the scene's fit in one (gpu_backend.cpp):
 // lavapipe (Mesa's llvmpipe) reads a storage buffer lane by lane, a branch and a bounds

@@ -3,7 +3,7 @@
 // continue in ONE new direction (N = 1), drawn uniformly over the hemisphere for diffuse
 // and glossy surfaces, or the reflected/refracted direction of mirrors and glass; paths
 // end by Russian roulette. Written in the GLSL/C++ subset: both backends run this file.
-#include "common/kernel/rng.glsl"
+#include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/sampling.glsl"
@@ -29,16 +29,16 @@ vec3 Li(Ray ray) {
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
     Frame frame = make_frame(surface.front ? surface.n : -surface.n);
     vec3 wo = frame_to_local(frame, -ray.dir);
-    uint lobe = choose_lobe(material, rng_next_float());
+    uint lobe = choose_lobe(material, sample_1d());
     vec3 wi;
     if (is_delta_lobe(lobe)) {  // mirror or glass: the one direction they send light
-      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, rng_next_float());
+      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, sample_1d());
       wi = bounce.wi;
       beta *= bounce.weight;
     } else {
       // Eq. (3) with N = 1: one direction uniform over the hemisphere, weighted
       // (2 pi / N) f cos, 2 pi = 1 / pdf (erratum 1: the article prints 1 / (2 pi N)).
-      wi = sample_uniform_hemisphere(rng_next_vec2());
+      wi = sample_uniform_hemisphere(sample_2d());
       beta *= (1.0f / uniform_hemisphere_pdf()) * eval_lobe(lobe, material, wo, wi) * wi.z;
     }
 

@@ -3,7 +3,7 @@
 // proportion to the BRDF (cosine lobe for diffuse, GGX visible normals for metal, the
 // delta direction of mirror and glass) and each contribution is divided by its pdf.
 // Written in the GLSL/C++ subset: both backends run this file.
-#include "common/kernel/rng.glsl"
+#include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/sampling.glsl"
@@ -29,15 +29,15 @@ vec3 Li(Ray ray) {
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
     Frame frame = make_frame(surface.front ? surface.n : -surface.n);
     vec3 wo = frame_to_local(frame, -ray.dir);
-    uint lobe = choose_lobe(material, rng_next_float());
+    uint lobe = choose_lobe(material, sample_1d());
     vec3 wi;
     if (is_delta_lobe(lobe)) {  // mirror or glass: the one direction they send light
-      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, rng_next_float());
+      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, sample_1d());
       wi = bounce.wi;
       beta *= bounce.weight;
     } else {
       // Eq. (4), corrected (erratum 2): draw wi with density pdf, weight f cos / pdf.
-      LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());
+      LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
       vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
       if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
       wi = s.wi;

@@ -3,7 +3,7 @@
 // direct light comes from a shadow ray to a point sampled on a light (soft shadows), the
 // indirect light from one BRDF-sampled ray (as stage3) whose hit no longer adds emission.
 // Written in the GLSL/C++ subset: both backends run this file.
-#include "common/kernel/rng.glsl"
+#include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/sampling.glsl"
@@ -34,10 +34,10 @@ vec3 Li(Ray ray) {
     vec3 n = surface.front ? surface.n : -surface.n;
     Frame frame = make_frame(n);
     vec3 wo = frame_to_local(frame, -ray.dir);
-    uint lobe = choose_lobe(material, rng_next_float());
+    uint lobe = choose_lobe(material, sample_1d());
     vec3 wi;
     if (is_delta_lobe(lobe)) {  // mirror or glass: the one direction they send light
-      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, rng_next_float());
+      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, sample_1d());
       wi = bounce.wi;
       beta *= bounce.weight;
       specular = true;
@@ -52,7 +52,7 @@ vec3 Li(Ray ray) {
         L += beta * f * ls.weight * wl.z;
       }
       // Indirect light: one BRDF-sampled direction, as in stage3 (Eq. 4).
-      LobeSample s = sample_lobe(lobe, material, wo, rng_next_vec2());
+      LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
       vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
       if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
       wi = s.wi;

@@ -68,9 +68,9 @@ FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSe
   const Camera camera = make_camera(scene, float(s.width) / float(s.height));
   const std::uint64_t h = bytes_hash(&camera, sizeof camera);
   char text[256];
-  std::snprintf(text, sizeof text, "%dx%d, sky %.9g,%.9g,%.9g, rr %s, depth cap %u, camera %s", s.width, s.height,
+  std::snprintf(text, sizeof text, "%dx%d, sky %.9g,%.9g,%.9g, rr %s, depth cap %u, sampler %s, camera %s", s.width, s.height,
                 double(s.sky.x), double(s.sky.y), double(s.sky.z), s.roulette == kRouletteThroughput ? "throughput" : "fixed",
-                unsigned(s.depth_cap), hex64(h).c_str());
+                unsigned(s.depth_cap), s.sampler == kSamplerIndependent ? "independent" : "sobol", hex64(h).c_str());
   id.options = text;
   id.seed = s.seed;
   return id;

@@ -88,6 +88,11 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
                  "also write each pixel's estimated standard error over the image's mean: .png grey, black 0 to "
                  "white 2 x --target-error (else 2 x the printed per-pixel error); .exr/.hdr the values")
       ->type_name("PATH");
+  std::string sampler = "sobol";
+  app.add_option("--sampler", sampler,
+                 "where the random numbers come from: sobol (Owen-scrambled Sobol points, stratified) or "
+                 "independent (independent uniform numbers); both unbiased")
+      ->capture_default_str()->check(CLI::IsMember({"sobol", "independent"}));
   std::string accel = "bvh";
   app.add_option("--accel", accel, "triangle search: bvh (a bounding volume hierarchy) or none (every triangle); the same image")
       ->capture_default_str()->check(CLI::IsMember({"bvh", "none"}));
@@ -130,6 +135,7 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   }
   o.render.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
   o.render.accel = accel == "none" ? kAccelNone : kAccelBvh;
+  o.render.sampler = sampler == "independent" ? kSamplerIndependent : kSamplerSobol;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");
   return o;
 }

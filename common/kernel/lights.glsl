@@ -104,15 +104,27 @@ LightSample sample_sky(vec3 n, vec2 u, float pick) {
   return LightSample(frame_to_world(make_frame(n), local), kInfinity, vec3(params.sky) / pdf, pdf);
 }
 
+// u rescaled from [lo, lo + width) to [0, 1): what is left of a number after it chose
+// among intervals, so that one 2-D sample both picks and places (below).
+float remap_within(float u, float lo, float width) {
+  return min((u - lo) / width, kOneMinusEpsilon);
+}
+
 // One light sample for the shading point p with normal n (on the side light may come from).
+// One 2-D sample does both steps: its first coordinate picks the light and, rescaled to
+// the picked light's interval, places the point with the second coordinate. Two separate
+// samples would be as unbiased, but a stratified sampler (sampler.glsl) would then
+// stratify the pick and the point each on its own, not the points of each light.
 LightSample sample_light(vec3 p, vec3 n) {
-  float u = rng_next_float();
-  vec2 u2 = rng_next_vec2();
+  vec2 u2 = sample_2d();
   float sky_pick = has_feature(kFeatureSky) ? params.sky_pick : 0.0f;
-  if (u < sky_pick) return sample_sky(n, u2, sky_pick);
+  if (u2.x < sky_pick) return sample_sky(n, vec2(remap_within(u2.x, 0.0f, sky_pick), u2.y), sky_pick);
   if (params.light_count == 0u) return no_light();
-  uint index = pick_light((u - sky_pick) / (1.0f - sky_pick));
+  float u = remap_within(u2.x, sky_pick, 1.0f - sky_pick);
+  uint index = pick_light(u);
   Light light = lights[index];
+  float lo = index == 0u ? 0.0f : lights[index - 1u].cumulative;
+  u2.x = remap_within(u, lo, lights[index].cumulative - lo);
   float pick = (1.0f - sky_pick) * light.pick;
   if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.kind == kLightTriangle) {
     return sample_triangle_light(light.index, p, u2, pick);

@@ -1,11 +1,12 @@
 // One pass over one pixel: params.sample_count samples, from sample index params.first_sample on,
-// each through a point jittered uniformly inside the pixel (box filter, the contract (README.md)).
+// each through a point jittered uniformly inside the pixel (box filter, the contract (README.md));
+// the sampler (sampler.glsl) chooses which uniform point.
 // Every stage defines `vec3 Li(Ray ray)`, its estimate of the radiance along a camera ray
 // (Eq. 2, 3, 4 or 5); this file is included after it and is the same for all stages.
 #ifndef PT_RENDER_PIXEL_GLSL
 #define PT_RENDER_PIXEL_GLSL
 
-#include "common/kernel/rng.glsl"
+#include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
 
 float luminance(vec3 c) {
@@ -23,9 +24,10 @@ vec4 render_pixel(uint x, uint y) {
   float ssq = 1.0f;    // sum of (luminance / scale)^2
   uint pixel_index = y * params.width + x;
   for (uint s = 0u; s < params.sample_count; s++) {
-    rng_seed(pixel_index, params.first_sample + s, params.seed);
-    float fx = (float(x) + rng_next_float()) / float(params.width);
-    float fy = (float(y) + rng_next_float()) / float(params.height);
+    start_sample(pixel_index, params.first_sample + s, params.seed, params.sampler_kind);
+    vec2 jitter = sample_2d();  // the sampler's 2-D slot 0: a (0,2)-sequence in the pixel
+    float fx = (float(x) + jitter.x) / float(params.width);
+    float fy = (float(y) + jitter.y) / float(params.height);
     vec3 L = Li(camera_ray(params.camera, vec2(fx, fy)));
     // A NaN or infinite sample would poison the pixel for ever: drop it and count it.
     if (any(isnan(L)) || any(isinf(L))) {

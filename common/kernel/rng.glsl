@@ -29,4 +29,10 @@ float rng_next_float() {
   return float(rng_next_uint() >> 8u) * (1.0f / 16777216.0f);
 }
 
+// A point uniformly distributed in [0, 1)^2: two floats of the stream, x first.
+vec2 rng_next_vec2() {
+  float a = rng_next_float();
+  return vec2(a, rng_next_float());
+}
+
 #endif  // PT_RNG_GLSL

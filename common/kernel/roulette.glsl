@@ -6,7 +6,7 @@
 #ifndef PT_ROULETTE_GLSL
 #define PT_ROULETTE_GLSL
 
-#include "common/kernel/rng.glsl"
+#include "common/kernel/sampler.glsl"
 
 float max_component(vec3 v) {
   return max(v.x, max(v.y, v.z));
@@ -19,7 +19,7 @@ bool is_finite(vec3 v) {
 // Returns what a surviving path is multiplied by (1 / p), or 0 to end it.
 float russian_roulette(vec3 beta, uint mode) {
   float p = mode == kRouletteFixed ? 0.5f : min(1.0f, max_component(beta));
-  if (!(p > 0.0f) || rng_next_float() >= p) return 0.0f;
+  if (!(p > 0.0f) || sample_1d() >= p) return 0.0f;
   return 1.0f / p;
 }
 

@@ -4,7 +4,7 @@
 #ifndef PT_SAMPLING_GLSL
 #define PT_SAMPLING_GLSL
 
-#include "common/kernel/rng.glsl"
+#include "common/kernel/sampler.glsl"
 
 const float kPi = 3.14159265358979f;
 
@@ -51,11 +51,6 @@ vec2 invert_cosine_hemisphere(vec3 w) {
   float phi = atan(w.y, w.x);
   if (phi < 0.0f) phi += 2.0f * kPi;
   return vec2(w.x * w.x + w.y * w.y, phi / (2.0f * kPi));
-}
-
-vec2 rng_next_vec2() {
-  float a = rng_next_float();
-  return vec2(a, rng_next_float());
 }
 
 #endif  // PT_SAMPLING_GLSL

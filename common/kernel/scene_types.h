@@ -40,6 +40,10 @@ const uint kRouletteThroughput = 1u;  // continue with the path weight's largest
 
 const uint kNoLight = 0xffffffffu;
 
+// Where the estimator's random numbers come from (FrameParams.sampler_kind, --sampler).
+const uint kSamplerIndependent = 0u;  // independent uniform numbers (a PCG stream per sample)
+const uint kSamplerSobol = 1u;        // Owen-scrambled Sobol points (common/kernel/sampler.glsl)
+
 // How the triangles are searched (FrameParams.accel, --accel): every triangle (the
 // article's brute force), or the bounding volume hierarchy (common/scene/bvh.h).
 const uint kAccelNone = 0u;
@@ -157,7 +161,7 @@ struct FrameParams {
   uint light_count;        // entries of the light table lights[]
   float scene_radius;      // the radius of the scene's bounding sphere (ray offsets scale with it)
   uint accel;              // kAccel*: the BVH or every triangle (the same hits)
-  uint pad1;               // unused
+  uint sampler_kind;       // kSampler*: which numbers feed the estimator (sampler.glsl)
 };
 
 // One node of the bounding volume hierarchy over the triangles (common/scene/bvh.h), in a
@@ -186,7 +190,7 @@ static_assert(sizeof(FrameParams) == 144);
 static_assert(offsetof(FrameParams, sky) == 64 && offsetof(FrameParams, width) == 80);
 static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParams, seed) == 112);
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);
-static_assert(offsetof(FrameParams, accel) == 136);
+static_assert(offsetof(FrameParams, accel) == 136 && offsetof(FrameParams, sampler_kind) == 140);
 static_assert(sizeof(BvhNode) == 32 && offsetof(BvhNode, hi) == 16 && offsetof(BvhNode, count) == 28);
 }  // namespace pt
 #endif

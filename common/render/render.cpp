@@ -67,7 +67,7 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   p.sphere_count = uint(scene.spheres.size());
   p.material_count = uint(scene.materials.size());
   p.point_light_count = uint(scene.point_lights.size());
-  p.seed = s.seed, p.roulette = s.roulette, p.depth_cap = s.depth_cap;
+  p.seed = s.seed, p.roulette = s.roulette, p.depth_cap = s.depth_cap, p.sampler_kind = s.sampler;
   p.light_count = uint(scene.lights.size());
   p.accel = s.accel == kAccelBvh && !scene.triangles.empty() ? kAccelBvh : kAccelNone;
   p.sky_pick = sky_pick_probability(scene, s.sky);

@@ -36,6 +36,8 @@ struct RenderSettings {
                                             // to the scene's features (--all-features)
   std::uint32_t accel = kAccelBvh;          // kAccelBvh or kAccelNone (--accel): how the
                                             // triangles are searched; the same image
+  std::uint32_t sampler = kSamplerSobol;    // kSamplerSobol or kSamplerIndependent (--sampler):
+                                            // where the random numbers come from
 };
 
 // How a render is watched and resumed; none of it changes the image.

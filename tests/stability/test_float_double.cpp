@@ -75,6 +75,7 @@ PT_DOUBLE_PRELUDE
 #undef PT_RNG_GLSL
 #undef PT_ROULETTE_GLSL
 #undef PT_SAMPLING_GLSL
+#undef PT_SAMPLER_GLSL
 #undef PT_SPAWN_GLSL
 
 namespace d4 {

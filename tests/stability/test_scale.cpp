@@ -50,7 +50,12 @@ TEST_CASE("stability: the floor under a square light renders its closed form at 
       RenderSettings s = settings(size, size, 1024, test_seed(4000));
       s.roulette = kRouletteThroughput;
       INFO(kernels.name << ", scale " << c.scale << ", offset " << c.offset.x);
-      check_scene(kernels, scene, expected, s);
+      // Moved 1e5 the scene's points snap to a float grid of 0.0078 (in a view 3 wide): the
+      // image mean is off by 2.4e-4 of itself (measured; stage3 and stage4), a bias the
+      // stratified sampler's small error bars (1e-5 of the mean) show and independent
+      // samples' (1e-4) hid. Leaks and acne are percents; 1e-3 of the mean is allowed here.
+      double floor = c.offset.x != 0.0f ? 1e-3 : 0.0;
+      check_scene(kernels, scene, expected, s, floor);
     }
   }
 }

@@ -64,28 +64,37 @@ TEST_CASE("stage3: a glass slab of ior 1 is invisible; of ior 1.5 it transmits (
 }
 
 TEST_CASE("stage3 and stage2 render a glossy scene to the same mean (t-test)", "[stage3][statistical]") {
-  // The floor under the square light, made a rough gold conductor.
+  // The floor under the square light, made a rough gold conductor. The means agree under
+  // both samplers; with independent samples stage3 is less noisy (the point of Eq. 4: a
+  // sample's variance). Under the default Owen-scrambled Sobol sampler stage2 was the less
+  // noisy one here (batch variance 2.4e-6 against 4.3e-6 for red): its uniform directions,
+  // stratified together with the pixel position, integrate this smooth lobe well, so the
+  // comparison of estimators is made where the article makes it, on independent samples.
   Scene scene = analytic::make_floor_light({});
   scene.materials[0] = make_metal(glm::vec3(1.0f, 0.78f, 0.34f), 0.5f);
-  RenderSettings s = settings(16, 16, 256, test_seed(1600));
-  s.roulette = kRouletteThroughput;
-  std::vector<Film> a = render_batches(stage2::kernels(), scene, s, 8);
-  std::vector<Film> b = render_batches(stage3::kernels(), scene, s, 8);
   auto image_mean = [](const Film& f, int c) {
     double m = 0.0;
     for (int y = 0; y < f.height(); y++)
       for (int x = 0; x < f.width(); x++) m += f.mean(x, y)[c];
     return m / (f.width() * f.height());
   };
-  const double t_crit = student_two_sided_quantile(sidak_alpha(1e-3, 3.0), 14);
-  for (int c = 0; c < 3; c++) {
-    double ma = 0, mb = 0, va = 0, vb = 0;
-    for (int i = 0; i < 8; i++) ma += image_mean(a[i], c) / 8, mb += image_mean(b[i], c) / 8;
-    for (int i = 0; i < 8; i++) va += std::pow(image_mean(a[i], c) - ma, 2) / 7, vb += std::pow(image_mean(b[i], c) - mb, 2) / 7;
-    double t = (ma - mb) / std::sqrt(va / 8 + vb / 8);
-    INFO("channel " << c << ": stage2 " << ma << " +- " << std::sqrt(va / 8) << ", stage3 " << mb << " +- "
-                    << std::sqrt(vb / 8) << ", t " << t);
-    CHECK(std::abs(t) < t_crit);
-    CHECK(vb < va);  // the point of stage3: less noise at the same spp on a glossy surface
+  const double t_crit = student_two_sided_quantile(sidak_alpha(1e-3, 6.0), 14);
+  for (std::uint32_t sampler : {kSamplerSobol, kSamplerIndependent}) {
+    RenderSettings s = settings(16, 16, 256, test_seed(1600 + 10 * sampler));
+    s.roulette = kRouletteThroughput;
+    s.sampler = sampler;
+    std::vector<Film> a = render_batches(stage2::kernels(), scene, s, 8);
+    std::vector<Film> b = render_batches(stage3::kernels(), scene, s, 8);
+    for (int c = 0; c < 3; c++) {
+      double ma = 0, mb = 0, va = 0, vb = 0;
+      for (int i = 0; i < 8; i++) ma += image_mean(a[i], c) / 8, mb += image_mean(b[i], c) / 8;
+      for (int i = 0; i < 8; i++) va += std::pow(image_mean(a[i], c) - ma, 2) / 7, vb += std::pow(image_mean(b[i], c) - mb, 2) / 7;
+      double t = (ma - mb) / std::sqrt(va / 8 + vb / 8);
+      INFO((sampler == kSamplerSobol ? "sobol" : "independent") << ", channel " << c << ": stage2 " << ma << " +- "
+                                                                 << std::sqrt(va / 8) << ", stage3 " << mb << " +- "
+                                                                 << std::sqrt(vb / 8) << ", t " << t);
+      CHECK(std::abs(t) < t_crit);
+      if (sampler == kSamplerIndependent) CHECK(vb < va);
+    }
   }
 }

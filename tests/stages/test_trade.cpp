@@ -69,11 +69,15 @@ Honesty honesty(const StageKernels& kernels, const Scene& scene, RenderSettings 
 // The printed error within 20% of the measured one (the requirement), and the
 // measurement precise enough that 20% is at least 4 of its standard errors: a failure is
 // a dishonest estimate, not bad luck, and a pass is not a lucky one either.
-void check_honest(const Honesty& h) {
-  INFO("printed " << h.printed << ", measured " << h.measured << " +- " << h.measured_relative_se * h.measured);
+// That is for independent samples, what the printed figure (the pixel's sample variance
+// over N) estimates. Under the default Owen-scrambled Sobol sampler the same figure is an
+// upper bound (docs/sampling.md): the printed error is at least the measured one.
+void check_honest(const Honesty& h, std::uint32_t sampler) {
+  INFO("printed " << h.printed << ", measured " << h.measured << " +- " << h.measured_relative_se * h.measured
+                  << (sampler == kSamplerSobol ? " (sobol)" : " (independent)"));
   double ratio = h.printed / h.measured;
-  CHECK(ratio >= 0.8);
-  CHECK(ratio <= 1.2);
+  CHECK(ratio >= (sampler == kSamplerSobol ? 1.0 : 0.8));
+  if (sampler == kSamplerIndependent) CHECK(ratio <= 1.2);
   CHECK(h.measured_relative_se <= 0.2 / 4.0);
 }
 
@@ -85,28 +89,37 @@ Scene furnace() { return analytic::make_furnace({}); }
 
 // 20 seeds x 256 pixels (64 at 4096 spp) are 5,120 (1,280) squared errors: their mean is
 // known to about 3% (6%), the RMSE to half that, so +-20% is 6 or more standard errors.
-TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds, furnace",
-          "[trade][statistical]") {
+TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds (an upper bound "
+          "under sobol), furnace",
+          "[stage3][trade][statistical]") {
   const int runs = 20;
-  for (std::uint64_t spp : {16u, 256u, 4096u}) {
-    int size = spp >= 4096 ? 8 : 16;
-    INFO(spp << " spp, " << size << "x" << size);
-    RenderSettings s = settings(size, size, spp, test_seed(5000 + std::uint32_t(spp)));
-    s.roulette = kRouletteThroughput;
-    check_honest(honesty(stage3::kernels(), furnace(), s, std::vector<double>(std::size_t(size) * size, 2.0), runs));
+  for (std::uint32_t sampler : {kSamplerIndependent, kSamplerSobol}) {
+    for (std::uint64_t spp : {16u, 256u, 4096u}) {
+      int size = spp >= 4096 ? 8 : 16;
+      INFO(spp << " spp, " << size << "x" << size);
+      RenderSettings s = settings(size, size, spp, test_seed(5000 + std::uint32_t(spp) + 100 * sampler));
+      s.roulette = kRouletteThroughput;
+      s.sampler = sampler;
+      check_honest(honesty(stage3::kernels(), furnace(), s, std::vector<double>(std::size_t(size) * size, 2.0), runs),
+                   sampler);
+    }
   }
 }
 
-TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds, floor under a light",
-          "[trade][statistical]") {
+TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds (an upper bound "
+          "under sobol), floor under a light",
+          "[stage4][trade][statistical]") {
   const int runs = 20;
   analytic::FloorLightScene a;
   Scene scene = analytic::make_floor_light(a);
-  for (std::uint64_t spp : {16u, 256u, 4096u}) {
-    int size = spp >= 4096 ? 8 : 16;
-    INFO(spp << " spp, " << size << "x" << size);
-    RenderSettings s = settings(size, size, spp, test_seed(6000 + std::uint32_t(spp)));
-    check_honest(honesty(stage4::kernels(), scene, s, luminances(floor_light_image(a, size)), runs));
+  for (std::uint32_t sampler : {kSamplerIndependent, kSamplerSobol}) {
+    for (std::uint64_t spp : {16u, 256u, 4096u}) {
+      int size = spp >= 4096 ? 8 : 16;
+      INFO(spp << " spp, " << size << "x" << size);
+      RenderSettings s = settings(size, size, spp, test_seed(6000 + std::uint32_t(spp) + 100 * sampler));
+      s.sampler = sampler;
+      check_honest(honesty(stage4::kernels(), scene, s, luminances(floor_light_image(a, size)), runs), sampler);
+    }
   }
 }
 

@@ -14,7 +14,9 @@ namespace pt::test {
 
 // Renders 8 independent batches, then: every pixel (check_pixels) and every channel's
 // image mean (channel_means_ratio) against the expected image.
-void check_scene(const StageKernels& kernels, const Scene& scene, const ExpectedImage& expected, RenderSettings s);
+// relative_floor: see channel_means_ratio (image_checks.h).
+void check_scene(const StageKernels& kernels, const Scene& scene, const ExpectedImage& expected, RenderSettings s,
+                 double relative_floor = 0.0);
 
 // Furnace box of the given albedo, emission 1: every pixel Le / (1 - albedo).
 void check_furnace(const StageKernels& kernels, float albedo, std::uint32_t roulette, std::uint32_t seed);

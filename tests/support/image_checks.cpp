@@ -87,7 +87,8 @@ PixelReport check_pixels(const Film& film, const ExpectedImage& expected, double
   return report;
 }
 
-double channel_means_ratio(const std::vector<Film>& batches, const ExpectedImage& expected, double alpha) {
+double channel_means_ratio(const std::vector<Film>& batches, const ExpectedImage& expected, double alpha,
+                           double relative_floor) {
   glm::dvec3 want(0.0);
   for (const glm::dvec3& e : expected) want += e;
   want /= double(expected.size());
@@ -106,7 +107,7 @@ double channel_means_ratio(const std::vector<Film>& batches, const ExpectedImage
     for (const glm::dvec3& m : means) mean += m[c] / k;
     for (const glm::dvec3& m : means) var += (m[c] - mean) * (m[c] - mean) / (k - 1);
     double se = std::sqrt(var / k);
-    double off = std::abs(mean - want[c]);
+    double off = std::max(0.0, std::abs(mean - want[c]) - relative_floor * std::abs(want[c]));
     double ratio = se > 0.0 ? off / se / t_crit : (off <= 1e-6 * std::abs(want[c]) + 1e-9 ? 0.0 : 1e9);
     UNSCOPED_INFO("channel " << c << ": mean " << mean << ", want " << want[c] << ", standard error " << se);
     worst = std::max(worst, ratio);

@@ -39,4 +39,15 @@ double normal_two_sided_quantile(double alpha) {
   return 0.5 * (lo + hi);
 }
 
+double log_slope(const std::vector<double>& n, const std::vector<double>& err) {
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n.size(); i++) mx += std::log(n[i]) / n.size(), my += std::log(err[i]) / n.size();
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < n.size(); i++) {
+    sxy += (std::log(n[i]) - mx) * (std::log(err[i]) - my);
+    sxx += (std::log(n[i]) - mx) * (std::log(n[i]) - mx);
+  }
+  return sxy / sxx;
+}
+
 }  // namespace pt::test

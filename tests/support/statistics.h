@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 namespace pt::test {
 
@@ -14,5 +15,9 @@ double binomial_two_sided_p(std::uint64_t k, std::uint64_t n, double p);
 
 // z with P(|Z| > z) = alpha for a standard normal Z.
 double normal_two_sided_quantile(double alpha);
+
+// Least-squares slope of log(err) against log(n): a convergence rate (-1/2 for independent
+// samples).
+double log_slope(const std::vector<double>& n, const std::vector<double>& err);
 
 }  // namespace pt::test
