@@ -1,5 +1,7 @@
 // main() of pt_gpu_tests: the image tests again, on the Vulkan backend. Where no Vulkan
 // device exists it says so and returns 77, which ctest reports as skipped.
+// Wide enough that Catch2 never wraps a failure message inside a number ("9.\n66671").
+#define CATCH_CONFIG_CONSOLE_WIDTH 400
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
