@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/app/compare.h"
+#include "common/app/app.h"
 #include "common/app/film_file.h"
 #include "common/app/image_output.h"
 #include "common/base/error.h"
@@ -171,13 +172,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const pt::Error& e) {
-    std::fprintf(stderr, "pt_compare: %s\n", e.what());
-    return e.code();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "pt_compare: internal error: %s; please report it with the command line\n", e.what());
-    return 3;
-  }
+  return pt::run_guarded("pt_compare", [&] { return run(argc, argv); }, 3);
 }

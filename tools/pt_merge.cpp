@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/app/app.h"
 #include "common/app/film_file.h"
 #include "common/app/image_output.h"
 #include "common/base/error.h"
@@ -68,13 +69,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const pt::Error& e) {
-    std::fprintf(stderr, "pt_merge: %s\n", e.what());
-    return e.code();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "pt_merge: internal error: %s; please report it with the command line\n", e.what());
-    return 1;
-  }
+  return pt::run_guarded("pt_merge", [&] { return run(argc, argv); });
 }

@@ -14,7 +14,7 @@
 
 namespace pt {
 
-int run_guarded(const char* stage, const std::function<int()>& body) {
+int run_guarded(const char* stage, const std::function<int()>& body, int internal_error_code) {
   try {
     return body();
   } catch (const Error& e) {
@@ -25,7 +25,7 @@ int run_guarded(const char* stage, const std::function<int()>& body) {
     return kExitBadOption;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: internal error: %s; please report it with the command line\n", stage, e.what());
-    return 1;
+    return internal_error_code;
   }
 }
 

@@ -30,9 +30,10 @@ struct Stage {
   Backends backends;
 };
 
-// Runs body; a pt::Error (or any other exception) becomes "<stage>: <message>" on stderr
-// and its exit code.
-int run_guarded(const char* stage, const std::function<int()>& body);
+// Runs body; a pt::Error (or any other exception) becomes "<program>: <message>" on stderr
+// and its exit code. An unexpected exception exits with internal_error_code (1 for the
+// stages and pt_merge; pt_compare's 1 means "not consistent", so it passes 3).
+int run_guarded(const char* program, const std::function<int()>& body, int internal_error_code = 1);
 
 // The options (nothing for --help, which is printed), with Ctrl-C handlers installed and
 // the image's memory checked.
