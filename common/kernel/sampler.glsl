@@ -169,10 +169,7 @@ float sample_1d() {
 
 // The next uniform point in [0, 1)^2 of this sample: the next 2-D slot.
 vec2 sample_2d() {
-  if (sampler_state.w == kSamplerIndependent) {
-    float a = rng_next_float();
-    return vec2(a, rng_next_float());
-  }
+  if (sampler_state.w == kSamplerIndependent) return rng_next_vec2();
   uint slot = sampler_state.z & 0xffffu;
   sampler_state.z = (sampler_state.z & 0xffff0000u) | ((slot + 1u) & 0xffffu);
   uvec2 bits = sobol_slot_point(sampler_state.x, slot, sampler_state.y);
