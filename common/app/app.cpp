@@ -41,7 +41,7 @@ std::optional<Options> read_options(int argc, char** argv, const Stage& stage) {
 Scene load_stage_scene(const Options& options, const Stage& stage) {
   Scene scene = load_scene(options.scene);
   if (!scene.point_lights.empty() && !stage.info.sees_point_lights) {
-    std::fprintf(stderr, "%s: the scene's %zu point light(s) are delta lights: only light sampling (stage4) sees them\n",
+    std::fprintf(stderr, "%s: the scene's %zu point light(s) are delta lights: only light sampling (stage4, stage5) sees them\n",
                  stage.info.name, scene.point_lights.size());
   }
   return scene;

@@ -4,12 +4,15 @@
 // delta), or a cosine-weighted direction of the uniform sky. Each sample carries
 // Le / (pdf in solid angle x probability of the pick): the geometry term cos_y / d^2 and
 // the area pdf 1 / A that the printed Eq. (5) lacks are in that pdf.
+// stage5_mis (beyond the article) samples triangles by the solid angle they subtend
+// instead, and needs each strategy's pdf for any direction (light_pdf, at the end).
 #ifndef PT_LIGHTS_GLSL
 #define PT_LIGHTS_GLSL
 
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/spawn.glsl"
+#include "common/kernel/spherical_triangle.glsl"
 
 struct LightSample {
   vec3 wi;         // unit direction from the shading point towards the light
@@ -60,21 +63,35 @@ LightSample sample_sphere_light_inside(Sphere s, vec3 p, vec2 u, float pick) {
   return LightSample(wi, dist, vec3(m.emission) / pdf, pdf);
 }
 
+// Whether p is inside a sphere light, or on its surface within rounding: then the cone
+// of directions it subtends is the whole sphere, and its area is sampled instead.
+bool inside_sphere_light(Sphere s, vec3 p) {
+  vec3 to_center = vec3(s.center) - p;
+  return dot(to_center, to_center) <= s.radius * s.radius * 1.001f;
+}
+
+// 1 - cos of the half-angle of the cone a sphere subtends from outside, at squared distance
+// d2 from its centre: sin^2 / (1 + cos), which keeps the digits that 1 - cos loses for a
+// small or distant sphere.
+float sphere_cone_one_minus_cos(float radius, float d2) {
+  float sin2_max = radius * radius / d2;
+  return sin2_max / (1.0f + sqrt(max(0.0f, 1.0f - sin2_max)));
+}
+
 // From outside a sphere light: a direction uniform in the cone it subtends, density
 // 1 / (2 pi (1 - cos_max)).
 LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
   Sphere s = spheres[index];
   vec3 center = s.center;
   float radius = s.radius;
+  if (inside_sphere_light(s, p)) return sample_sphere_light_inside(s, p, u, pick);
   vec3 to_center = center - p;
   float d2 = dot(to_center, to_center);
-  // Inside, or on the surface within rounding: the cone is the whole sphere of directions.
-  if (d2 <= radius * radius * 1.001f) return sample_sphere_light_inside(s, p, u, pick);
   float d = sqrt(d2);
-  float sin2_max = radius * radius / d2;
-  float cos_max = sqrt(max(0.0f, 1.0f - sin2_max));
-  float cos_t = 1.0f - u.x * (1.0f - cos_max);
-  float sin_t = sqrt(max(0.0f, 1.0f - cos_t * cos_t));
+  float one_minus_cos_max = sphere_cone_one_minus_cos(radius, d2);
+  float one_minus_cos_t = u.x * one_minus_cos_max;
+  float cos_t = 1.0f - one_minus_cos_t;
+  float sin_t = sqrt(max(0.0f, one_minus_cos_t * (2.0f - one_minus_cos_t)));
   float phi = 2.0f * kPi * u.y;
   Frame f = make_frame(to_center / d);
   vec3 wi = frame_to_world(f, vec3(sin_t * cos(phi), sin_t * sin(phi), cos_t));
@@ -82,7 +99,7 @@ LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
   float b = dot(to_center, wi);
   float disc = max(0.0f, radius * radius - (d2 - b * b));
   float dist = b - sqrt(disc);
-  float pdf = pick / (2.0f * kPi * (1.0f - cos_max));
+  float pdf = pick / (2.0f * kPi * one_minus_cos_max);
   if (!(pdf > 0.0f) || isinf(pdf)) return no_light();
   return LightSample(wi, dist, vec3(materials[s.material].emission) / pdf, pdf);
 }
@@ -110,14 +127,67 @@ float remap_within(float u, float lo, float width) {
   return min((u - lo) / width, kOneMinusEpsilon);
 }
 
-// One light sample for the shading point p with normal n (on the side light may come from).
+// The probability that sample_light chooses the sky, and that it chooses entry `light` of
+// the light table.
+float sky_pick_probability() {
+  return has_feature(kFeatureSky) ? params.sky_pick : 0.0f;
+}
+
+float light_pick_probability(uint light) {
+  return (1.0f - sky_pick_probability()) * lights[light].pick;
+}
+
+// How a light sample places its point on a triangle: uniform on its area (stage4, the
+// article's way), or uniform in the solid angle it subtends (stage5_mis).
+const uint kTriangleByArea = 0u;
+const uint kTriangleBySolidAngle = 1u;
+
+// Whether the triangle faces p: a one-sided emitter lights only the side its front faces.
+bool triangle_lights_point(Triangle tri, vec3 p) {
+  if (materials[tri.material].double_sided != 0u) return true;
+  vec3 c = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));
+  return dot(p - vec3(tri.p0), c) > 0.0f;
+}
+
+// The solid angle the triangle subtends from p, or 0 where sampling it is left to its area
+// (outside kMinSphericalTriangle..kMaxSphericalTriangle, spherical_triangle.glsl). The
+// sampler and light_pdf both decide by this one function, so their pdfs agree.
+float triangle_solid_angle_for_sampling(Triangle tri, vec3 p) {
+  vec3 a = normalize(vec3(tri.p0) - p);
+  vec3 b = normalize(vec3(tri.p1) - p);
+  vec3 c = normalize(vec3(tri.p2) - p);
+  float area = spherical_triangle_area(a, b, c);
+  return (area >= kMinSphericalTriangle && area <= kMaxSphericalTriangle) ? area : 0.0f;
+}
+
+// A direction uniform in the solid angle of the emissive triangle `index` seen from p:
+// density pick / solid angle, constant over the triangle (stage5_mis).
+LightSample sample_triangle_light_by_solid_angle(uint index, vec3 p, vec2 u, float pick) {
+  Triangle tri = triangles[index];
+  if (!triangle_lights_point(tri, p)) return no_light();
+  float area = triangle_solid_angle_for_sampling(tri, p);
+  if (area == 0.0f) return sample_triangle_light(index, p, u, pick);
+  vec3 a = normalize(vec3(tri.p0) - p);
+  vec3 b = normalize(vec3(tri.p1) - p);
+  vec3 c = normalize(vec3(tri.p2) - p);
+  vec3 wi = spherical_triangle_sample(a, b, c, area, u);
+  // The distance to the triangle's plane along wi.
+  vec3 normal = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));
+  float dist = dot(vec3(tri.p0) - p, normal) / dot(wi, normal);
+  if (!(dist > 0.0f) || isinf(dist)) return no_light();
+  float pdf = pick / area;
+  return LightSample(wi, dist, vec3(materials[tri.material].emission) / pdf, pdf);
+}
+
+// One light sample for the shading point p with normal n (on the side light may come from),
+// its triangles placed by `triangles_by` (kTriangleByArea or kTriangleBySolidAngle).
 // One 2-D sample does both steps: its first coordinate picks the light and, rescaled to
 // the picked light's interval, places the point with the second coordinate. Two separate
 // samples would be as unbiased, but a stratified sampler (sampler.glsl) would then
 // stratify the pick and the point each on its own, not the points of each light.
-LightSample sample_light(vec3 p, vec3 n) {
+LightSample sample_light_by(vec3 p, vec3 n, uint triangles_by) {
   vec2 u2 = sample_2d();
-  float sky_pick = has_feature(kFeatureSky) ? params.sky_pick : 0.0f;
+  float sky_pick = sky_pick_probability();
   if (u2.x < sky_pick) return sample_sky(n, vec2(remap_within(u2.x, 0.0f, sky_pick), u2.y), sky_pick);
   if (params.light_count == 0u) return no_light();
   float u = remap_within(u2.x, sky_pick, 1.0f - sky_pick);
@@ -127,12 +197,18 @@ LightSample sample_light(vec3 p, vec3 n) {
   u2.x = remap_within(u, lo, lights[index].cumulative - lo);
   float pick = (1.0f - sky_pick) * light.pick;
   if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.kind == kLightTriangle) {
+    if (triangles_by == kTriangleBySolidAngle) return sample_triangle_light_by_solid_angle(light.index, p, u2, pick);
     return sample_triangle_light(light.index, p, u2, pick);
   }
   if (!has_feature(kFeaturePointLights) || light.kind == kLightSphere) {
     return sample_sphere_light(light.index, p, u2, pick);
   }
   return sample_point_light(light.index, p, pick);
+}
+
+// stage4's light sample: triangles by area, as the article's Eq. (5).
+LightSample sample_light(vec3 p, vec3 n) {
+  return sample_light_by(p, n, kTriangleByArea);
 }
 
 // The pdf (solid angle x pick probability) with which sample_light picks, from a point,
@@ -147,8 +223,38 @@ float triangle_light_pdf(uint index, vec3 wi, float dist) {
   float cos_y = dot(-wi, normalize(c));
   if (materials[tri.material].double_sided != 0u) cos_y = abs(cos_y);
   if (!(cos_y > 0.0f)) return 0.0f;
-  float pick = (1.0f - params.sky_pick) * lights[tri.light].pick;
-  return dist * dist / (cos_y * area) * pick;
+  return dist * dist / (cos_y * area) * light_pick_probability(tri.light);
+}
+
+// The pdf with which sample_light_by(p, n, kTriangleBySolidAngle) picks the direction wi
+// from p, when wi meets the surface `hit` at distance dist (0 where that surface is no
+// light): what stage5_mis weighs a BRDF sample's emission with.
+float light_pdf(vec3 p, vec3 wi, Hit hit, float dist) {
+  if (!has_feature(kFeatureSpheres) || hit.kind == kPrimTriangle) {
+    Triangle tri = triangles[hit.prim];
+    if (tri.light == kNoLight || !triangle_lights_point(tri, p)) return 0.0f;
+    float area = triangle_solid_angle_for_sampling(tri, p);
+    if (area == 0.0f) return triangle_light_pdf(hit.prim, wi, dist);
+    return light_pick_probability(tri.light) / area;
+  }
+  Sphere s = spheres[hit.prim];
+  if (s.light == kNoLight) return 0.0f;
+  float pick = light_pick_probability(s.light);
+  if (!inside_sphere_light(s, p)) {
+    vec3 to_center = vec3(s.center) - p;
+    return pick / (2.0f * kPi * sphere_cone_one_minus_cos(s.radius, dot(to_center, to_center)));
+  }
+  if (materials[s.material].double_sided == 0u) return 0.0f;
+  vec3 n = (p + dist * wi - vec3(s.center)) / s.radius;
+  float cos_y = abs(dot(wi, n));
+  if (!(cos_y > 0.0f)) return 0.0f;
+  return dist * dist / (cos_y * 4.0f * kPi * s.radius * s.radius) * pick;
+}
+
+// The pdf with which sample_light picks the sky in direction wi from a point whose normal
+// (on the side light comes from) is n.
+float sky_light_pdf(vec3 n, vec3 wi) {
+  return sky_pick_probability() * cosine_hemisphere_pdf(max(dot(n, wi), 0.0f));
 }
 
 // Units in the last place of the light point's coordinates by which a shadow ray stops

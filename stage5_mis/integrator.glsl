@@ -1,0 +1,90 @@
+// stage5_mis: beyond the article, multiple importance sampling of light and BSDF samples
+// (Veach 1997; docs/stage5_mis.md). stage4 (Eq. 5) finds direct light only by light
+// sampling, which loses to stage3's BSDF sampling under large lights and near edges. Here
+// every non-delta hit takes both a light sample and a BSDF sample; each counts the
+// emission it finds, weighted by the power heuristic of the two strategies' pdfs
+// (common/kernel/mis.glsl), so emission is counted on every bounce, once in expectation.
+// Light samples place their point on a triangle by the solid angle it subtends.
+// Written in the GLSL/C++ subset: both backends run this file.
+#include "common/kernel/sampler.glsl"
+#include "common/kernel/camera.glsl"
+#include "common/kernel/intersect.glsl"
+#include "common/kernel/sampling.glsl"
+#include "common/kernel/bsdf.glsl"
+#include "common/kernel/spawn.glsl"
+#include "common/kernel/roulette.glsl"
+#include "common/kernel/lights.glsl"
+#include "common/kernel/mis.glsl"
+
+vec3 Li(Ray ray) {
+  vec3 L = vec3(0.0f);     // radiance gathered along the path
+  vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
+  bool specular = true;    // camera ray, or the last bounce was a delta (mirror, glass)
+  // The vertex whose BSDF sample made `ray`: its point, its normal on the side the light
+  // came from, and the pdf of that sample (solid angle), to weigh the emission it finds.
+  vec3 from_p = vec3(0.0f);
+  vec3 from_n = vec3(0.0f, 0.0f, 1.0f);
+  float bsdf_pdf = 0.0f;
+  for (uint depth = 0u;; depth++) {
+    Hit hit = intersect_scene(ray, kInfinity);
+    if (hit.kind == kPrimNone) {
+      // The sky: in full after a delta bounce, else weighed against sampling it as a light.
+      float w = specular ? 1.0f : power_heuristic(bsdf_pdf, sky_light_pdf(from_n, ray.dir));
+      L += beta * vec3(params.sky) * w;
+      break;
+    }
+    Surface surface = surface_at(ray, hit);
+    Material material = materials[surface.material];
+    vec3 Le = emitted_radiance(material, surface.front);
+    if (max_component(Le) > 0.0f) {
+      // Emission found by a BSDF sample, weighed against the light sample that could have
+      // found it; in full on camera rays and after delta bounces (no light sample there).
+      float w = 1.0f;
+      if (!specular) w = power_heuristic(bsdf_pdf, light_pdf(from_p, ray.dir, hit, length(surface.p - from_p)));
+      L += beta * Le * w;
+    }
+    // The depth cap ends the path after the emission its last ray found: a path of N
+    // bounces gets its direct light from both strategies, as stage4's from its one.
+    if (at_depth_cap(depth)) break;
+
+    // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
+    vec3 n = surface.front ? surface.n : -surface.n;
+    Frame frame = make_frame(n);
+    vec3 wo = frame_to_local(frame, -ray.dir);
+    uint lobe = choose_lobe(material, sample_1d());
+    vec3 wi;
+    if (is_delta_lobe(lobe)) {  // mirror or glass: the one direction they send light
+      DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, sample_1d());
+      wi = bounce.wi;
+      beta *= bounce.weight;
+      specular = true;
+    } else {
+      // The light sample: direct light as in stage4, weighed against the BSDF sample that
+      // could have found the same point (a point light is a delta: the light sample only).
+      LightSample ls = sample_light_by(surface.p, n, kTriangleBySolidAngle);
+      vec3 wl = frame_to_local(frame, ls.wi);
+      vec3 f = eval_lobe(lobe, material, wo, wl);
+      if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f && !occluded(surface.p, surface.n, ls)) {
+        float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, lobe_pdf(lobe, material, wo, wl)) : 1.0f;
+        L += beta * f * ls.weight * (wl.z * w);
+      }
+      // The BSDF sample, as in stage3 (Eq. 4): it continues the path, and the emission it
+      // finds at the next hit counts with its weight (above).
+      LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
+      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
+      if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
+      wi = s.wi;
+      beta *= weight;
+      specular = false;
+      from_p = surface.p;
+      from_n = n;
+      bsdf_pdf = s.pdf;
+    }
+
+    float survive = russian_roulette(beta, params.roulette);
+    if (survive == 0.0f) break;
+    beta *= survive;
+    ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+  }
+  return L;
+}
