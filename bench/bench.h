@@ -34,7 +34,7 @@ struct Config {
 // One line of the run list: a scene, a stage, a backend.
 struct Run {
   std::string scene;    // builtin NAME or a glTF path
-  std::string stage;    // stage1_raycast ... stage4_direct_indirect
+  std::string stage;    // stage1_raycast ... stage5_mis
   std::string backend;  // cpu or gpu
 };
 
