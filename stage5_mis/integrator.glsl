@@ -46,6 +46,15 @@ vec3 Li(Ray ray) {
     // The depth cap ends the path after the emission its last ray found: a path of N
     // bounces gets its direct light from both strategies, as stage4's from its one.
     if (at_depth_cap(depth)) break;
+    // Russian roulette decides here, after the emission this ray found, not before the ray
+    // was traced (stages 2-4): the two strategies' shares of one vertex's direct light then
+    // survive or end together, as their MIS weights assume. It costs the one ray a path
+    // traces before it ends, and it pays (docs/stage5_mis.md has the numbers).
+    if (depth > 0u) {
+      float survive = russian_roulette(beta, params.roulette);
+      if (survive == 0.0f) break;
+      beta *= survive;
+    }
 
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
     vec3 n = surface.front ? surface.n : -surface.n;
@@ -81,9 +90,6 @@ vec3 Li(Ray ray) {
       bsdf_pdf = s.pdf;
     }
 
-    float survive = russian_roulette(beta, params.roulette);
-    if (survive == 0.0f) break;
-    beta *= survive;
     ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
   }
   return L;

@@ -149,15 +149,11 @@ bool triangle_lights_point(Triangle tri, vec3 p) {
   return dot(p - vec3(tri.p0), c) > 0.0f;
 }
 
-// The solid angle the triangle subtends from p, or 0 where sampling it is left to its area
-// (outside kMinSphericalTriangle..kMaxSphericalTriangle, spherical_triangle.glsl). The
-// sampler and light_pdf both decide by this one function, so their pdfs agree.
-float triangle_solid_angle_for_sampling(Triangle tri, vec3 p) {
-  vec3 a = normalize(vec3(tri.p0) - p);
-  vec3 b = normalize(vec3(tri.p1) - p);
-  vec3 c = normalize(vec3(tri.p2) - p);
-  float area = spherical_triangle_area(a, b, c);
-  return (area >= kMinSphericalTriangle && area <= kMaxSphericalTriangle) ? area : 0.0f;
+// Whether the light sample of a triangle seen as t is drawn by solid angle: within
+// kMinSphericalTriangle..kMaxSphericalTriangle (spherical_triangle.glsl); else by area.
+// The sampler and light_pdf both decide by this one function, so their pdfs agree.
+bool sample_by_solid_angle(SphericalTriangle t) {
+  return t.area >= kMinSphericalTriangle && t.area <= kMaxSphericalTriangle;
 }
 
 // A direction uniform in the solid angle of the emissive triangle `index` seen from p:
@@ -165,17 +161,14 @@ float triangle_solid_angle_for_sampling(Triangle tri, vec3 p) {
 LightSample sample_triangle_light_by_solid_angle(uint index, vec3 p, vec2 u, float pick) {
   Triangle tri = triangles[index];
   if (!triangle_lights_point(tri, p)) return no_light();
-  float area = triangle_solid_angle_for_sampling(tri, p);
-  if (area == 0.0f) return sample_triangle_light(index, p, u, pick);
-  vec3 a = normalize(vec3(tri.p0) - p);
-  vec3 b = normalize(vec3(tri.p1) - p);
-  vec3 c = normalize(vec3(tri.p2) - p);
-  vec3 wi = spherical_triangle_sample(a, b, c, area, u);
+  SphericalTriangle t = spherical_triangle(p, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
+  if (!sample_by_solid_angle(t)) return sample_triangle_light(index, p, u, pick);
+  vec3 wi = spherical_triangle_sample(t, u);
   // The distance to the triangle's plane along wi.
   vec3 normal = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));
   float dist = dot(vec3(tri.p0) - p, normal) / dot(wi, normal);
   if (!(dist > 0.0f) || isinf(dist)) return no_light();
-  float pdf = pick / area;
+  float pdf = pick / t.area;
   return LightSample(wi, dist, vec3(materials[tri.material].emission) / pdf, pdf);
 }
 
@@ -212,9 +205,9 @@ LightSample sample_light(vec3 p, vec3 n) {
 }
 
 // The pdf (solid angle x pick probability) with which sample_light picks, from a point,
-// the direction wi that meets the emissive triangle `index` at distance dist: what a
-// light sample's pdf must equal (the tests check it; multiple importance sampling would
-// weigh BRDF samples with it).
+// the direction wi that meets the emissive triangle `index` at distance dist, placing its
+// point by area: what a light sample's pdf must equal (the tests check it), and light_pdf's
+// answer where stage5 samples a triangle by area too.
 float triangle_light_pdf(uint index, vec3 wi, float dist) {
   Triangle tri = triangles[index];
   if (tri.light == kNoLight) return 0.0f;
@@ -233,9 +226,9 @@ float light_pdf(vec3 p, vec3 wi, Hit hit, float dist) {
   if (!has_feature(kFeatureSpheres) || hit.kind == kPrimTriangle) {
     Triangle tri = triangles[hit.prim];
     if (tri.light == kNoLight || !triangle_lights_point(tri, p)) return 0.0f;
-    float area = triangle_solid_angle_for_sampling(tri, p);
-    if (area == 0.0f) return triangle_light_pdf(hit.prim, wi, dist);
-    return light_pick_probability(tri.light) / area;
+    SphericalTriangle t = spherical_triangle(p, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
+    if (!sample_by_solid_angle(t)) return triangle_light_pdf(hit.prim, wi, dist);
+    return light_pick_probability(tri.light) / t.area;
   }
   Sphere s = spheres[hit.prim];
   if (s.light == kNoLight) return 0.0f;
@@ -245,7 +238,7 @@ float light_pdf(vec3 p, vec3 wi, Hit hit, float dist) {
     return pick / (2.0f * kPi * sphere_cone_one_minus_cos(s.radius, dot(to_center, to_center)));
   }
   if (materials[s.material].double_sided == 0u) return 0.0f;
-  vec3 n = (p + dist * wi - vec3(s.center)) / s.radius;
+  vec3 n = (p + dist * wi - vec3(s.center)) / float(s.radius);
   float cos_y = abs(dot(wi, n));
   if (!(cos_y > 0.0f)) return 0.0f;
   return dist * dist / (cos_y * 4.0f * kPi * s.radius * s.radius) * pick;

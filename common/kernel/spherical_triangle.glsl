@@ -19,39 +19,62 @@
 const float kMinSphericalTriangle = 1e-3f;
 const float kMaxSphericalTriangle = 6.2f;
 
-// The angle between two unit vectors, accurate near 0 and near pi (where acos is not).
-float angle_between(vec3 a, vec3 b) {
-  if (dot(a, b) < 0.0f) return kPi - 2.0f * asin(min(0.5f * length(a + b), 1.0f));
-  return 2.0f * asin(min(0.5f * length(a - b), 1.0f));
-}
+// A triangle seen from a point: the unit vectors towards its corners and the solid angle
+// they span.
+struct SphericalTriangle {
+  vec3 a;
+  vec3 b;
+  vec3 c;
+  float area;  // solid angle, steradians
+};
 
-// The solid angle of the spherical triangle of unit vectors a, b, c:
-// tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a).
-float spherical_triangle_area(vec3 a, vec3 b, vec3 c) {
+// The triangle p0, p1, p2 seen from p. Its solid angle by Van Oosterom and Strackee:
+// tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a), accurate for small triangles,
+// where the angle excess alpha + beta + gamma - pi loses its digits to the sum near pi.
+SphericalTriangle spherical_triangle(vec3 p, vec3 p0, vec3 p1, vec3 p2) {
+  vec3 a = normalize(p0 - p);
+  vec3 b = normalize(p1 - p);
+  vec3 c = normalize(p2 - p);
   float volume = abs(dot(a, cross(b, c)));
   float den = 1.0f + dot(a, b) + dot(b, c) + dot(c, a);
-  return 2.0f * atan(volume, den);
+  return SphericalTriangle(a, b, c, 2.0f * atan(volume, den));
 }
 
-// A unit vector uniform within the spherical triangle a, b, c (unit vectors) whose solid
-// angle is `area`: u.x chooses the sub-triangle a, b, c' of area u.x * area (c' on the arc
-// from a to c), u.y a point on the arc from b to c' so that the result is uniform.
-vec3 spherical_triangle_sample(vec3 a, vec3 b, vec3 c, float area, vec2 u) {
-  // The triangle's angle at a: between the planes through a, b and through a, c.
-  float alpha = angle_between(normalize(cross(a, b)), normalize(cross(a, c)));
-  float sub = u.x * area;
-  float half_sub = 0.5f * sub;
-  float s = sin(sub - alpha);
-  float t = cos(sub - alpha);
-  // Arvo's u = t - cos(alpha) and v = s + sin(alpha) cos(c), where cos(c) = a.b, by the sum
-  // formulas and 1 - a.b = |a - b|^2 / 2.
-  float uu = 2.0f * sin(half_sub) * sin(alpha - half_sub);
+// A unit vector uniform within the spherical triangle t: u.x chooses the sub-triangle
+// a, b, c' of area u.x * t.area (c' on the arc from a to c), u.y a point on the arc from b
+// to c' so that the result is uniform (Arvo 1995).
+vec3 spherical_triangle_sample(SphericalTriangle t, vec2 u) {
+  vec3 a = t.a;
+  vec3 b = t.b;
+  vec3 c = t.c;
+  // The triangle's angle alpha at a lies between the planes through a, b and through a, c,
+  // whose normals are n_b = a x b and n_c = a x c: cos alpha = n_b . n_c / (|n_b| |n_c|),
+  // and sin alpha = |n_b x n_c| / (|n_b| |n_c|) = |a . (b x c)| / (|n_b| |n_c|), no
+  // inverse trigonometry needed.
+  vec3 n_b = cross(a, b);
+  vec3 n_c = cross(a, c);
+  float norms = sqrt(dot(n_b, n_b) * dot(n_c, n_c));
+  float cos_alpha = dot(n_b, n_c) / norms;
+  float sin_alpha = abs(dot(a, cross(b, c))) / norms;
+  // The sub-triangle's area sub = 2h; Arvo's s = sin(sub - alpha), t = cos(sub - alpha),
+  // u = t - cos(alpha) and v = s + sin(alpha) cos(c) (cos(c) = a.b) from sin h and cos h
+  // by the sum formulas, with 1 - a.b = |a - b|^2 / 2: no difference of nearly equal terms.
+  float h = 0.5f * u.x * t.area;
+  float sin_h = sin(h);
+  float cos_h = cos(h);
+  float sin_2h = 2.0f * sin_h * cos_h;
+  float cos_2h = 1.0f - 2.0f * sin_h * sin_h;
+  float s = sin_2h * cos_alpha - cos_2h * sin_alpha;
+  float tt = cos_2h * cos_alpha + sin_2h * sin_alpha;
+  float sin_alpha_minus_h = sin_alpha * cos_h - cos_alpha * sin_h;
+  float cos_alpha_minus_h = cos_alpha * cos_h + sin_alpha * sin_h;
+  float uu = 2.0f * sin_h * sin_alpha_minus_h;
   vec3 ab = a - b;
-  float vv = 2.0f * sin(half_sub) * cos(alpha - half_sub) - sin(alpha) * 0.5f * dot(ab, ab);
+  float vv = 2.0f * sin_h * cos_alpha_minus_h - sin_alpha * 0.5f * dot(ab, ab);
   // q = cos of the arc from a to c'.
-  float q = ((vv * t - uu * s) * cos(alpha) - vv) / ((vv * s + uu * t) * sin(alpha));
+  float q = ((vv * tt - uu * s) * cos_alpha - vv) / ((vv * s + uu * tt) * sin_alpha);
   q = clamp(q, -1.0f, 1.0f);
-  vec3 c_perp = normalize(cross(cross(a, c), a));  // the unit tangent at a towards c
+  vec3 c_perp = normalize(cross(n_c, a));  // the unit tangent at a towards c
   vec3 c_sub = q * a + sqrt(max(0.0f, (1.0f - q) * (1.0f + q))) * c_perp;
   // z = 1 - u.y (1 - c'.b): the cosine of the angle from b, uniform in area between b and c'.
   vec3 cb = c_sub - b;
