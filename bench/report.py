@@ -8,7 +8,8 @@ log time (-1/2 for an unbiased estimator), rays per second, specialised kernels,
 rays per second against the triangle count with the BVH and Embree (issue 17), and
 issue 22's times to 10%, 3% and 1% read off the curves and the split's cost (report_error_targets.py).
 Hand-written findings come from docs/results/notes.md, accel_notes.md, split_notes.md,
-sampler_notes.md (bench/sampler_study.py) and cycles_notes.md (bench/cycles/compare.py), kept
+sampler_notes.md (bench/sampler_study.py), cycles_notes.md (bench/cycles/compare.py) and
+smallpt_notes.md (bench/smallpt_compare.py), kept
 between runs. Every table comes from the CSV files in the folder, so a run of one section
 (pt_bench --section accel) keeps the others' tables as their last full run left them."""
 import argparse
@@ -186,7 +187,11 @@ def main():
         md += ["## Efficiency ratios and CPU against GPU", "",
                "Efficiency 1/(MSE x time) at each run's last checkpoint; a ratio above 1 means the later "
                "stage reaches the same error sooner. GPU/CPU is the ratio of samples per second.", "",
-               "| scene | backend | stage3/stage2 | stage4/stage3 |", "|---|---|---|---|"]
+               "stage5 (beyond the article, issue #18) is set against the better of stage3 and stage4 "
+               "(target: at least 1 on every scene) and against stage3 (target: at least 20 under the small "
+               "light); **bold** marks a target met.", "",
+               "| scene | backend | stage3/stage2 | stage4/stage3 | stage5/max(stage3, stage4) | stage5/stage3 |",
+               "|---|---|---|---|---|---|"]
         for scene in scenes:
             for backend in ("cpu", "gpu"):
                 eff = {k[1].split("_")[0]: efficiency(v) for k, v in runs.items() if k[0] == scene and k[2] == backend}
@@ -194,7 +199,15 @@ def main():
                     continue
                 r32 = "%.3g" % (eff["stage3"] / eff["stage2"]) if "stage3" in eff and eff.get("stage2") else "-"
                 r43 = "%.3g" % (eff["stage4"] / eff["stage3"]) if "stage4" in eff and eff.get("stage3") else "-"
-                md.append("| %s | %s | %s | %s |" % (scene, backend, r32, r43))
+                r5b, r53 = "-", "-"
+                if "stage5" in eff and eff.get("stage3") and eff.get("stage4"):
+                    best = eff["stage5"] / max(eff["stage3"], eff["stage4"])
+                    r5b = ("**%.3g**" if best >= 1.0 else "%.3g") % best
+                if "stage5" in eff and eff.get("stage3"):
+                    ratio = eff["stage5"] / eff["stage3"]
+                    met = scene == "floor_small_light" and ratio >= 20.0
+                    r53 = ("**%.3g**" if met else "%.3g") % ratio
+                md.append("| %s | %s | %s | %s | %s | %s |" % (scene, backend, r32, r43, r5b, r53))
         md += ["", "| scene | stage | CPU samples/s | GPU samples/s | GPU/CPU |", "|---|---|---|---|---|"]
         for scene in scenes:
             for stage in OrderedDict.fromkeys(k[1] for k in runs if k[0] == scene):
@@ -239,7 +252,7 @@ def main():
 
     md += split_section(a.results)
     # Hand-written sections of later issues, each measured by its own script (named inside).
-    for name in ("sampler_notes.md", "cycles_notes.md"):
+    for name in ("sampler_notes.md", "cycles_notes.md", "smallpt_notes.md"):
         path = os.path.join(a.results, name)
         if os.path.exists(path):
             md += [open(path).read().rstrip(), ""]
