@@ -25,7 +25,8 @@ struct SphericalTriangle {
   vec3 a;
   vec3 b;
   vec3 c;
-  float area;  // solid angle, steradians
+  float area;    // solid angle, steradians
+  float volume;  // |a . (b x c)|: the volume of the corners' parallelepiped
 };
 
 // The triangle p0, p1, p2 seen from p. Its solid angle by Van Oosterom and Strackee:
@@ -37,7 +38,7 @@ SphericalTriangle spherical_triangle(vec3 p, vec3 p0, vec3 p1, vec3 p2) {
   vec3 c = normalize(p2 - p);
   float volume = abs(dot(a, cross(b, c)));
   float den = 1.0f + dot(a, b) + dot(b, c) + dot(c, a);
-  return SphericalTriangle(a, b, c, 2.0f * atan(volume, den));
+  return SphericalTriangle(a, b, c, 2.0f * atan(volume, den), volume);
 }
 
 // A unit vector uniform within the spherical triangle t: u.x chooses the sub-triangle
@@ -55,7 +56,7 @@ vec3 spherical_triangle_sample(SphericalTriangle t, vec2 u) {
   vec3 n_c = cross(a, c);
   float norms = sqrt(dot(n_b, n_b) * dot(n_c, n_c));
   float cos_alpha = dot(n_b, n_c) / norms;
-  float sin_alpha = abs(dot(a, cross(b, c))) / norms;
+  float sin_alpha = t.volume / norms;
   // The sub-triangle's area sub = 2h; Arvo's s = sin(sub - alpha), t = cos(sub - alpha),
   // u = t - cos(alpha) and v = s + sin(alpha) cos(c) (cos(c) = a.b) from sin h and cos h
   // by the sum formulas, with 1 - a.b = |a - b|^2 / 2: no difference of nearly equal terms.
