@@ -8,6 +8,7 @@
 #define PT_SPHERICAL_TRIANGLE_GLSL
 
 #include "common/kernel/sampling.glsl"
+#include "common/kernel/float_math.glsl"
 
 // Solid angles between these bounds are sampled by spherical_triangle_sample; outside them
 // the light falls back to sampling its area (lights.glsl). Between them the float mapping
@@ -40,7 +41,7 @@ SphericalTriangle spherical_triangle(vec3 p, vec3 p0, vec3 p1, vec3 p2) {
   vec3 c = normalize(p2 - p);
   float volume = abs(dot(a, cross(b - a, c - a)));
   float den = 1.0f + dot(a, b) + dot(b, c) + dot(c, a);
-  return SphericalTriangle(a, b, c, 2.0f * atan(volume, den), volume);
+  return SphericalTriangle(a, b, c, 2.0f * atan2_upper(volume, den), volume);
 }
 
 // A unit vector uniform within the spherical triangle t (Arvo 1995): u.x chooses the
@@ -67,8 +68,9 @@ vec3 spherical_triangle_sample(SphericalTriangle t, vec2 u) {
   float cos_alpha = dot(n_b, n_c) / norms;
   float sin_alpha = t.volume / norms;
   float h = 0.5f * u.x * t.area;
-  float sin_h = sin(h);
-  float cos_h = cos(h);
+  vec2 sc = sin_cos(h);  // float_math.glsl: the built-ins are not precise enough on GPUs
+  float sin_h = sc.x;
+  float cos_h = sc.y;
   float k = length(ba) / length(a + b);  // tan(c / 2), c the arc from a to b
   float x = sin_h / (k * (sin_alpha * cos_h - cos_alpha * sin_h));
   // cos and sin of the arc b' = 2 atan(x) from a to c'; x beyond float: b' = pi.

@@ -142,11 +142,11 @@ TEST_CASE("stage5: a diffuse floor under a small, the default and a large square
   // (0.5) and builtin:floor_large_light (2: BSDF sampling's case, where the light's corners
   // are nearly overhead), the same power; and the default square's triangle half. The
   // light's solid angle from the floor spans the area fallback (the small light's far
-  // corners, below 1e-3 sr) up to several sr. The image mean may differ from the closed
-  // form by 1e-4 relative: the float solid-angle sampler's stated precision
-  // (spherical_triangle.glsl), which the Sobol sampler's batch means (standard error ~2e-6
-  // relative under the small light) would otherwise resolve. Measured at 256 spp: -1.3e-6
-  // on the CPU, -2.2e-5 on lavapipe (stage4, by area: -3.4e-6 on both).
+  // corners, below 1e-3 sr) up to several sr. The image mean must match with no floor on
+  // the tolerance: the Sobol sampler's batch means resolve 2e-6 relative here, and before
+  // the spherical triangles took their sin, cos and atan from float_math.glsl, lavapipe's
+  // built-ins biased the mean by -2.2e-5 (t = -9.8); now 20 seed offsets pass on both
+  // backends.
   const int size = 16;
   std::uint32_t seed = test_seed(5400);
   for (float half : {analytic::kSmallLightHalf, 0.5f, analytic::kLargeLightHalf}) {
@@ -158,7 +158,7 @@ TEST_CASE("stage5: a diffuse floor under a small, the default and a large square
       a.triangle = triangle;
       INFO("light half-size " << half << (triangle ? ", the triangle" : ", the square"));
       check_scene(stage5::kernels(), analytic::make_floor_light(a), floor_light_image(a, size),
-                  settings(size, size, 256, seed), 1e-4);
+                  settings(size, size, 256, seed));
       seed += 10;
     }
   }
