@@ -1,11 +1,12 @@
-# The labs (docs/labs/README.md): one per stage of the article (Eq. 2 to 5), and lab 5 on the
-# BVH that follows it (docs/acceleration.md), each asking the student to write a few kernel
+# The labs (docs/labs/README.md): one per stage of the article (Eq. 2 to 5), lab 5 on the
+# BVH that follows it (docs/acceleration.md), and lab 6 on stage5_mis's multiple importance
+# sampling (docs/stage5_mis.md), each asking the student to write a few kernel
 # functions in labs/labN.glsl. The kernel declares those
 # functions and the build decides where their definitions come from: it writes
 # kernel_definitions.glsl, which every kernel includes (cpu/kernel_support.h, the GPU
 # kernels of cmake/PtStage.cmake), and picks stage1's integrator for lab 1.
 #   (default)              the reference definitions in common/kernel/.
-#   -DPT_LAB=N (1-5)       the student's build: lab N's functions come from labs/labN.glsl
+#   -DPT_LAB=N (1-6)       the student's build: lab N's functions come from labs/labN.glsl
 #                          (stubs that fail loudly until written), on both backends.
 #   -DPT_LAB_CHECK=ON      the CI's check build: on the CPU, PT_LAB_STUB=N at run time picks
 #                          lab N's stubs (labs/check_definitions.h, labs/check_lab1.h), so one
@@ -14,11 +15,11 @@
 #   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once (all features) instead of
 #                          once per feature variant: a faster build (the sanitizer and
 #                          lab-check builds use it); the images are the same.
-set(PT_LAB 0 CACHE STRING "Lab mode: 1-5 builds lab N with the student's labs/labN.glsl; 0 is the normal build")
+set(PT_LAB 0 CACHE STRING "Lab mode: 1-6 builds lab N with the student's labs/labN.glsl; 0 is the normal build")
 option(PT_LAB_CHECK "Check build: PT_LAB_STUB=N at run time selects lab N's stubs on the CPU" OFF)
 option(PT_CPU_GENERAL_ONLY "Compile one general CPU kernel per stage instead of feature variants" OFF)
-if(NOT PT_LAB MATCHES "^[0-5]$")
-  message(FATAL_ERROR "PT_LAB is '${PT_LAB}': use -DPT_LAB=1, 2, 3, 4 or 5 for a lab (docs/labs/README.md), or 0 for the normal build")
+if(NOT PT_LAB MATCHES "^[0-6]$")
+  message(FATAL_ERROR "PT_LAB is '${PT_LAB}': use -DPT_LAB=1, 2, 3, 4, 5 or 6 for a lab (docs/labs/README.md), or 0 for the normal build")
 endif()
 if(PT_LAB AND PT_LAB_CHECK)
   message(FATAL_ERROR "PT_LAB and PT_LAB_CHECK exclude each other: use PT_LAB=N for a student's build, PT_LAB_CHECK=ON for the CI check")
@@ -28,7 +29,7 @@ endif()
 set(PT_KERNEL_GENERATED_DIR ${PROJECT_BINARY_DIR}/generated)
 set(definitions "")
 foreach(pair 2:common/kernel/uniform_hemisphere.glsl 3:common/kernel/cosine_hemisphere.glsl
-             4:common/kernel/triangle_light.glsl 5:common/kernel/box_slab.glsl)
+             4:common/kernel/triangle_light.glsl 5:common/kernel/box_slab.glsl 6:common/kernel/mis.glsl)
   string(REGEX REPLACE ":.*" "" lab ${pair})
   string(REGEX REPLACE ".*:" "" reference ${pair})
   if(PT_LAB EQUAL lab)

@@ -1,4 +1,4 @@
-// The lab check build's definitions of the functions labs 2-5 ask for (cmake/Labs.cmake,
+// The lab check build's definitions of the functions labs 2-6 ask for (cmake/Labs.cmake,
 // PT_LAB_CHECK): each calls the student's version from labs/labN.glsl when PT_LAB_STUB=N
 // selects lab N at run time, else the reference, so one build shows every lab's tests
 // failing with its stubs (tools/expect_lab_failure.sh). C++ only; included inside a kernel's
@@ -10,6 +10,7 @@ namespace reference {
 #include "common/kernel/cosine_hemisphere.glsl"
 #include "common/kernel/triangle_light.glsl"
 #include "common/kernel/box_slab.glsl"
+#include "common/kernel/mis.glsl"
 }  // namespace reference
 
 namespace student {
@@ -17,6 +18,7 @@ namespace student {
 #include "labs/lab3.glsl"
 #include "labs/lab4.glsl"
 #include "labs/lab5.glsl"
+#include "labs/lab6.glsl"
 }  // namespace student
 
 vec3 sample_uniform_hemisphere(vec2 u) {
@@ -42,4 +44,11 @@ vec3 inverse_direction(vec3 dir) {
 vec2 box_span(Ray ray, vec3 inv_dir, vec3 lo, vec3 hi, float t_max) {
   return pt::lab::selected() == 5 ? student::box_span(ray, inv_dir, lo, hi, t_max)
                                   : reference::box_span(ray, inv_dir, lo, hi, t_max);
+}
+float power_heuristic(float mine, float other) {
+  return pt::lab::selected() == 6 ? student::power_heuristic(mine, other) : reference::power_heuristic(mine, other);
+}
+float triangle_light_pdf_by_solid_angle(uint index, vec3 p, vec3 wi, float dist) {
+  return pt::lab::selected() == 6 ? student::triangle_light_pdf_by_solid_angle(index, p, wi, dist)
+                                  : reference::triangle_light_pdf_by_solid_angle(index, p, wi, dist);
 }

@@ -1,10 +1,10 @@
 // The C++ side of the lab hooks (docs/labs/README.md; labs/lab_support.glsl): which lab's
 // stub replaces the real function, and the loud failure of a stub the student has not yet
 // written. Labs 1-4 follow the article's four algorithms (Eq. 2, 3, 4 and 5), lab 5 the BVH
-// that comes after it.
+// that comes after it, lab 6 stage5_mis's multiple importance sampling.
 //   PT_LAB=N (CMake -DPT_LAB=N, the student's build): lab N's stub, fixed at compile time.
 //   PT_LAB_CHECK (CMake -DPT_LAB_CHECK=ON, the CI's check build): the stub of lab
-//   $PT_LAB_STUB, chosen at run time, so one build checks all five labs.
+//   $PT_LAB_STUB, chosen at run time, so one build checks all six labs.
 #pragma once
 
 #include <atomic>
@@ -35,8 +35,8 @@ inline int selected() {
 
 // A stub's result: NaN, and one line on stderr the first time any stub of this lab runs.
 inline float not_written(int lab, const char* function) {
-  static std::atomic<bool> said[6] = {};
-  if (lab >= 0 && lab < 6 && !said[lab].exchange(true)) {
+  static std::atomic<bool> said[7] = {};
+  if (lab >= 0 && lab < 7 && !said[lab].exchange(true)) {
     std::fprintf(stderr, "lab %d: %s is not written yet: write it in labs/lab%d.glsl (docs/labs/lab%d.md)\n", lab,
                  function, lab, lab);
   }

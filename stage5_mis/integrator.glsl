@@ -3,7 +3,8 @@
 // sampling, which loses to stage3's BSDF sampling under large lights and near edges. Here
 // every non-delta hit takes both a light sample and a BSDF sample; each counts the
 // emission it finds, weighted by the power heuristic of the two strategies' pdfs
-// (common/kernel/mis.glsl), so emission is counted on every bounce, once in expectation.
+// (declared below, defined in common/kernel/mis.glsl), so emission is counted on every
+// bounce, once in expectation.
 // Light samples place their point on a triangle by the solid angle it subtends.
 // Written in the GLSL/C++ subset: both backends run this file.
 #include "common/kernel/sampler.glsl"
@@ -14,7 +15,11 @@
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/roulette.glsl"
 #include "common/kernel/lights.glsl"
-#include "common/kernel/mis.glsl"
+
+// The power heuristic's weight of a sample drawn with pdf `mine` against the other
+// strategy's pdf `other` for its direction: defined in common/kernel/mis.glsl, or by
+// labs/lab6.glsl in lab 6's build (cmake/Labs.cmake, kernel_definitions.glsl).
+float power_heuristic(float mine, float other);
 
 vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path

@@ -3,7 +3,7 @@
 # check build with lab N's stubs selected (PT_LAB_STUB=N) and passes only if they FAIL, by
 # an assertion rather than a crash, after the stub said it ran. This is what shows that a
 # lab's tests grade the function the student writes (the article's Eq. 2 to 5, one lab each,
-# and lab 5's slab test of the BVH that follows the article).
+# lab 5's slab test of the BVH that follows the article, and lab 6's MIS weights of stage5).
 # usage: tools/expect_lab_failure.sh N PT_TESTS_BINARY CATCH2_TEST_SPEC
 set -uo pipefail
 if [ $# -ne 3 ]; then

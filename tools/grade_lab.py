@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Grades a folder of lab submissions in one command (docs/labs/teachers.md). Tooling for
 teachers, not a part of the article: the labs (docs/labs/README.md) ask a student for the
-function that carries one of the article's Eq. (2) to (5), or lab 5's slab test, and the
-project's own tests grade it; this script runs those tests on every submission of a class.
+function that carries one of the article's Eq. (2) to (5), lab 5's slab test, or lab 6's MIS
+weights of stage5_mis, and the project's own tests grade it; this script runs those tests on
+every submission of a class.
 
 usage: tools/grade_lab.py LAB SUBMISSIONS_DIR [--out DIR] [--timeout SECONDS] [--jobs N] [--work DIR]
 
@@ -55,13 +56,16 @@ REPO = os.path.dirname(HERE)
 #          student's stage, so they grade pt_compare, not the student;
 #   lab 5: the BVH build ([#test_bvh]), the CPU's SIMD walk (cpu/wide_bvh_walk.cpp compiles
 #          the reference box_slab.glsl, [#test_wide_bvh]), the summary line ([cli]), the
-#          icosphere ([scene]) and the storage-buffer limit ([reliability]).
+#          icosphere ([scene]) and the storage-buffer limit ([reliability]);
+#   lab 6: the spherical triangles and the light sample by solid angle ([solid_angle]), which
+#          neither weigh a sample nor ask light_pdf.
 EXCLUDED = {
     1: [],
     2: ["[ggx]", "[energy]", '"sampling: a mixed material*"', "[compare]"],
     3: ["[ggx]", "[compare]"],
     4: ["[compare]"],
     5: ["[#test_bvh]", "[#test_wide_bvh]", "[cli]", "[scene]", "[reliability]"],
+    6: ["[solid_angle]"],
 }
 # Tests that check the project's convention rather than the estimator: a sampler with the
 # right distribution but another mapping of u fails only these (docs/labs/lab2.md, step 1).
@@ -83,7 +87,7 @@ class Parser(argparse.ArgumentParser):
 
 def parse_args(argv):
     p = Parser(prog="tools/grade_lab.py", add_help=True, usage=USAGE)
-    p.add_argument("lab", nargs="?", help="the lab number, 1-5")
+    p.add_argument("lab", nargs="?", help="the lab number, 1-6")
     p.add_argument("submissions", nargs="?", help="a folder of NAME.glsl files or NAME/ folders")
     p.add_argument("--out", help="where grades.csv, grades.xml and logs/ go (default WORK/grades)")
     p.add_argument("--timeout", type=float, default=300.0, help="seconds for one submission's tests (default 300)")
@@ -92,8 +96,8 @@ def parse_args(argv):
     a = p.parse_args(argv)
     if a.lab is None or a.submissions is None:
         die(f"missing the {'lab number and the ' if a.lab is None else ''}submissions folder ({USAGE})", 2)
-    if not re.fullmatch(r"[1-5]", a.lab):
-        die(f"the lab is '{a.lab}': give 1, 2, 3, 4 or 5 ({USAGE})", 2)
+    if not re.fullmatch(r"[1-6]", a.lab):
+        die(f"the lab is '{a.lab}': give 1, 2, 3, 4, 5 or 6 ({USAGE})", 2)
     a.lab = int(a.lab)
     if not os.path.isdir(a.submissions):
         die(f"no folder '{a.submissions}' of submissions ({USAGE})", 2)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Makes the students' copy of lab N (docs/labs/README.md; labs 1-4 follow the article's
-Eq. 2 to 5, lab 5 the BVH after it): the repository without .git and build folders, in which
+Eq. 2 to 5, lab 5 the BVH after it, lab 6 stage5_mis's multiple importance sampling): the repository without .git and build folders, in which
 the reference code of the functions lab N asks for (the files its build replaces by
 labs/labN.glsl, see cmake/Labs.cmake) is removed from their bodies, and the chapters'
 excerpts of them too, so the answer is not handed out with the question.
@@ -25,6 +25,7 @@ REFERENCE_FILES = {
     3: ["common/kernel/cosine_hemisphere.glsl"],
     4: ["common/kernel/triangle_light.glsl"],
     5: ["common/kernel/box_slab.glsl"],
+    6: ["common/kernel/mis.glsl"],
 }
 DEFINITION = re.compile(r"^(\w+)\s+(\w+)\s*\(.*\{\s*$")
 
@@ -81,8 +82,8 @@ def strip_docs(dest, lab, names):
 
 
 def main():
-    if len(sys.argv) != 3 or sys.argv[1] not in ("1", "2", "3", "4", "5"):
-        print("usage: tools/make_lab_handout.py N DEST   (N = 1 to 5; DEST a new folder)", file=sys.stderr)
+    if len(sys.argv) != 3 or sys.argv[1] not in [str(lab) for lab in REFERENCE_FILES]:
+        print("usage: tools/make_lab_handout.py N DEST   (N = 1 to 6; DEST a new folder)", file=sys.stderr)
         return 2
     lab, dest = int(sys.argv[1]), sys.argv[2]
     if os.path.exists(dest):

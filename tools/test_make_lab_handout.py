@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Test of tools/make_lab_handout.py (the students' copy of a lab; the labs follow the
-article's Eq. 2 to 5, lab 5 the BVH after it): for each lab, the reference functions in
+article's Eq. 2 to 5, lab 5 the BVH after it, lab 6 stage5_mis's MIS): for each lab, the reference functions in
 the handout keep only a comment and a return, no chapter shows their code, the handout's docs still pass
 docs_check, and the lab's stage and stage4 still compile to SPIR-V in that lab's build
 (configured with -DPT_LAB=N). Refuses an existing DEST.
@@ -15,7 +15,8 @@ sys.path.insert(0, HERE)
 import docs_check  # noqa: E402
 
 # The stage each lab's build is checked with (besides stage4): lab 5's slab test serves every stage.
-STAGES = ("stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect", "stage1_raycast")
+STAGES = ("stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect", "stage1_raycast",
+          "stage5_mis")
 
 
 def expect(cond, what, output=""):
@@ -39,7 +40,7 @@ def main():
         r = subprocess.run([sys.executable, tool, "2", existing], capture_output=True, text=True)
         expect(r.returncode == 2 and "already exists" in r.stderr and os.listdir(existing) == [],
                "an existing destination is refused and left alone", r.stderr)
-        for lab in (1, 2, 3, 4, 5):
+        for lab in range(1, len(STAGES) + 1):
             dest = os.path.join(tmp, f"lab{lab}")
             r = subprocess.run([sys.executable, tool, str(lab), dest], capture_output=True, text=True)
             expect(r.returncode == 0, f"lab {lab}: the handout is made", r.stdout + r.stderr)

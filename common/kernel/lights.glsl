@@ -5,7 +5,8 @@
 // Le / (pdf in solid angle x probability of the pick): the geometry term cos_y / d^2 and
 // the area pdf 1 / A that the printed Eq. (5) lacks are in that pdf.
 // stage5_mis (beyond the article) samples triangles by the solid angle they subtend
-// instead, and needs each strategy's pdf for any direction (light_pdf, at the end).
+// instead, and needs each strategy's pdf for any direction (light_pdf, at the end; its
+// triangles' part, triangle_light_pdf_by_solid_angle, is lab 6's and defined in mis.glsl).
 #ifndef PT_LIGHTS_GLSL
 #define PT_LIGHTS_GLSL
 
@@ -219,16 +220,18 @@ float triangle_light_pdf(uint index, vec3 wi, float dist) {
   return dist * dist / (cos_y * area) * light_pick_probability(tri.light);
 }
 
+// The pdf (solid angle x pick probability) with which sample_light_by(p, n,
+// kTriangleBySolidAngle) draws the direction wi from p that meets the triangle `index` at
+// distance dist; 0 where the triangle is no light or does not face p. light_pdf's answer
+// for a triangle: defined in mis.glsl, or by labs/lab6.glsl in lab 6's build (cmake/Labs.cmake).
+float triangle_light_pdf_by_solid_angle(uint index, vec3 p, vec3 wi, float dist);
+
 // The pdf with which sample_light_by(p, n, kTriangleBySolidAngle) picks the direction wi
 // from p, when wi meets the surface `hit` at distance dist (0 where that surface is no
 // light): what stage5_mis weighs a BRDF sample's emission with.
 float light_pdf(vec3 p, vec3 wi, Hit hit, float dist) {
   if (!has_feature(kFeatureSpheres) || hit.kind == kPrimTriangle) {
-    Triangle tri = triangles[hit.prim];
-    if (tri.light == kNoLight || !triangle_lights_point(tri, p)) return 0.0f;
-    SphericalTriangle t = spherical_triangle(p, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
-    if (!sample_by_solid_angle(t)) return triangle_light_pdf(hit.prim, wi, dist);
-    return light_pick_probability(tri.light) / t.area;
+    return triangle_light_pdf_by_solid_angle(hit.prim, p, wi, dist);
   }
   Sphere s = spheres[hit.prim];
   if (s.light == kNoLight) return 0.0f;

@@ -12,6 +12,9 @@
 //    and by area (the fallback), spheres from outside and inside, and the sky; and each
 //    sampler's pdf integrates to 1 (the mean of 1/pdf is the light's solid angle);
 //  - the power heuristic (common/kernel/mis.glsl): the two weights sum to 1, never NaN.
+// Tags: [mis] marks the tests of lab 6's functions (docs/labs/lab6.md: power_heuristic, and
+// light_pdf through triangle_light_pdf_by_solid_angle), which grade it; [solid_angle] the
+// tests of the sampling by solid angle, which call neither.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -39,8 +42,7 @@ namespace kernel {
 #include "common/kernel/bsdf.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/lights.glsl"
-#include "common/kernel/mis.glsl"
-#include "cpu/kernel_support.h"
+#include "cpu/kernel_support.h"  // and through it mis.glsl (kernel_definitions.glsl)
 }  // namespace kernel
 }  // namespace
 
@@ -232,7 +234,7 @@ long double outside_by(L3 a, L3 b, L3 c, L3 w) {
 }  // namespace
 
 TEST_CASE("spherical triangles: the solid angle matches the angle excess, from tiny triangles to nearly a hemisphere",
-          "[stage5][mis]") {
+          "[stage5][solid_angle]") {
   // spherical_triangle's tan(omega / 2) = |a . (b x c)| / (1 + a.b + b.c + c.a) in
   // float against Girard's A + B + C - pi in long double, on the same float vectors. In
   // float the triple product of nearly parallel unit vectors has an absolute error of up to
@@ -274,7 +276,7 @@ TEST_CASE("spherical triangles: the solid angle matches the angle excess, from t
 }
 
 TEST_CASE("spherical triangles: Arvo's sampling is uniform over 64 sub-triangles (chi-square), from 1e-3 sr to 6.2 sr",
-          "[stage5][mis][statistical]") {
+          "[stage5][solid_angle][statistical]") {
   // Each triangle is split 3 times at the midpoints of its edges on the sphere (4^3 = 64
   // sub-triangles); a sub-triangle's expected share of the samples is its solid angle over
   // the whole (long double). Samples are placed by descending the subdivision; one that lies
@@ -370,7 +372,7 @@ TEST_CASE("spherical triangles: Arvo's sampling is uniform over 64 sub-triangles
 }
 
 TEST_CASE("spherical triangles: Arvo's two steps hold within 1e-4 (the sub-triangle's solid angle, the cosine along its arc)",
-          "[stage5][mis]") {
+          "[stage5][solid_angle]") {
   // Arvo's mapping, exactly: u.x picks the point c' on the arc a..c for which the triangle
   // a, b, c' has u.x times the solid angle (c' = the sample at u.y = 1); u.y places the
   // sample on the arc b..c' with 1 - cos(angle from b) = u.y (1 - cos(b, c')). Both are the
@@ -416,7 +418,7 @@ TEST_CASE("spherical triangles: Arvo's two steps hold within 1e-4 (the sub-trian
   CHECK(tris.size() >= 20);
 }
 
-TEST_CASE("spherical triangles: every sample's ray hits the planar triangle", "[stage5][mis][statistical]") {
+TEST_CASE("spherical triangles: every sample's ray hits the planar triangle", "[stage5][solid_angle][statistical]") {
   // The triangle as a light: vertices at random distances 0.2..5 along the unit vectors
   // from the shading point, the planar triangle they span. Every sample's ray from the point
   // must hit it (Möller-Trumbore in long double: barycentric coordinates in [0, 1] at a
@@ -705,7 +707,7 @@ TEST_CASE("MIS: the power heuristic's two weights sum to 1 and are never NaN, fo
 }
 
 TEST_CASE("light sampling by solid angle: the mean of 1/pdf is the light's solid angle (each sampler's pdf integrates to 1)",
-          "[stage5][mis][statistical]") {
+          "[stage5][solid_angle][statistical]") {
   // E[1/pdf] over a sampler's directions is the measure of the set it samples: the triangle's
   // solid angle (long double, from the float vertices), the sphere's cone 2 pi (1 - cos) from
   // outside, 4 pi from inside. By solid angle, and from outside the sphere, every sample's
