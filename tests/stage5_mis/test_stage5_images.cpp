@@ -177,67 +177,16 @@ TEST_CASE("stage5: a glass slab of ior 1 is invisible; of ior 1.5 it transmits (
 
 TEST_CASE("stage5: a point light above a diffuse floor gives albedo I cos / (pi d^2) (a delta light: the light sample alone)",
           "[stage5][statistical][analytic]") {
-  const int size = 16;
-  analytic::PointFloorScene a;
-  ExpectedImage expected = expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
-    auto radiance = [](double sx, double sy, const void* data) {
-      const analytic::PointFloorScene& a = *static_cast<const analytic::PointFloorScene*>(data);
-      glm::dvec3 p(sx * a.floor.view_half, 0.0, -sy * a.floor.view_half), light(0.0, a.floor.light_height, 0.0);
-      double d2 = glm::dot(light - p, light - p), cos_theta = a.floor.light_height / std::sqrt(d2);
-      return a.floor.albedo * cos_theta / (M_PI * d2);
-    };
-    return glm::dvec3(a.intensity) * rect_average(x0, y0, x1, y1, radiance, &a);
-  });
-  RenderSettings s = settings(size, size, 64, test_seed(5700));
-  s.roulette = kRouletteThroughput;
-  check_scene(stage5::kernels(), analytic::make_point_floor(a), expected, s);
+  check_point_floor(stage5::kernels(), 16, test_seed(5700));
 }
 
 TEST_CASE("stage5: inside a diffuse sphere lit by a point light of intensity pi at its centre every pixel is 1",
           "[stage5][statistical][analytic]") {
-  analytic::PointInSphereScene a;
-  double want = a.albedo * a.intensity / (M_PI * a.radius * a.radius) / (1.0 - a.albedo);
-  RenderSettings s = settings(12, 12, 256, test_seed(5800));
-  s.roulette = kRouletteThroughput;
-  check_scene(stage5::kernels(), analytic::make_point_in_sphere(a), ExpectedImage(144, glm::dvec3(want)), s);
+  check_point_in_sphere(stage5::kernels(), test_seed(5800));
 }
 
 TEST_CASE("stage5 and stage3 agree on the Cornell box, over the image and region by region (t-tests)",
           "[stage5][statistical]") {
-  Scene scene = make_builtin_scene("cornell");
-  RenderSettings s = settings(32, 32, 64, test_seed(5900));
-  s.roulette = kRouletteThroughput;
-  const int k = 16;  // batches: stage3 sees the small light by chance, its batch means are skewed
-  std::vector<Film> a = render_batches(stage3::kernels(), scene, s, k);
-  std::vector<Film> b = render_batches(stage5::kernels(), scene, s, k);
-  // 4 x 4 regions of 8 x 8 pixels (the soft shadows of the boxes among them) and the whole
-  // image, each channel: Welch t-tests over the batches, Šidák-corrected over all of them.
-  const int regions = 17;
-  const double t_crit = student_two_sided_quantile(sidak_alpha(1e-3, regions * 3.0), 2 * k - 2);
-  auto region_mean = [](const Film& f, int r, int c) {
-    int x0 = r < 16 ? (r % 4) * 8 : 0, y0 = r < 16 ? (r / 4) * 8 : 0, w = r < 16 ? 8 : f.width();
-    double m = 0.0;
-    for (int y = y0; y < y0 + w; y++)
-      for (int x = x0; x < x0 + w; x++) m += f.mean(x, y)[c];
-    return m / (w * w);
-  };
-  int failures = 0;
-  for (int r = 0; r < regions; r++) {
-    for (int c = 0; c < 3; c++) {
-      double ma = 0, mb = 0, va = 0, vb = 0;
-      for (int i = 0; i < k; i++) ma += region_mean(a[i], r, c) / k, mb += region_mean(b[i], r, c) / k;
-      for (int i = 0; i < k; i++) {
-        va += std::pow(region_mean(a[i], r, c) - ma, 2) / (k - 1);
-        vb += std::pow(region_mean(b[i], r, c) - mb, 2) / (k - 1);
-      }
-      double se = std::sqrt(va / k + vb / k);
-      double t = se > 0.0 ? (ma - mb) / se : (ma == mb ? 0.0 : 1e9);
-      if (std::abs(t) >= t_crit) {
-        failures++;
-        UNSCOPED_INFO("region " << r << " channel " << c << ": stage3 " << ma << ", stage5 " << mb << ", t " << t);
-      }
-    }
-  }
-  CHECK(failures == 0);
+  check_agree_on_cornell(stage3::kernels(), stage5::kernels(), test_seed(5900));
 }
 

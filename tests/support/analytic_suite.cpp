@@ -8,6 +8,8 @@
 #include "common/scene/analytic_scenes.h"
 #include "common/kernel/scene_types.h"
 #include "tests/support/analytic_images.h"
+#include "common/scene/scene_loading.h"
+#include "tests/support/statistics.h"
 #include "tests/support/lambert.h"
 #include "tests/support/test_render.h"
 
@@ -87,6 +89,67 @@ void check_glass_slab(const StageKernels& kernels, float ior, std::uint32_t seed
   INFO("ior " << ior << ": transmittance " << want);
   check_scene(kernels, analytic::make_glass_slab(a), ExpectedImage(12 * 12, glm::dvec3(want)),
               settings(12, 12, 256, seed));
+}
+
+void check_point_floor(const StageKernels& kernels, int size, std::uint32_t seed) {
+  analytic::PointFloorScene a;
+  ExpectedImage expected = expected_image(size, size, [&](double x0, double y0, double x1, double y1) {
+    auto radiance = [](double sx, double sy, const void* data) {
+      const analytic::PointFloorScene& a = *static_cast<const analytic::PointFloorScene*>(data);
+      glm::dvec3 p(sx * a.floor.view_half, 0.0, -sy * a.floor.view_half), light(0.0, a.floor.light_height, 0.0);
+      double d2 = glm::dot(light - p, light - p), cos_theta = a.floor.light_height / std::sqrt(d2);
+      return a.floor.albedo * cos_theta / (M_PI * d2);
+    };
+    return glm::dvec3(a.intensity) * rect_average(x0, y0, x1, y1, radiance, &a);
+  });
+  RenderSettings s = settings(size, size, 64, seed);
+  s.roulette = kRouletteThroughput;
+  check_scene(kernels, analytic::make_point_floor(a), expected, s);
+}
+
+void check_point_in_sphere(const StageKernels& kernels, std::uint32_t seed) {
+  analytic::PointInSphereScene a;
+  double want = a.albedo * a.intensity / (M_PI * a.radius * a.radius) / (1.0 - a.albedo);
+  RenderSettings s = settings(12, 12, 256, seed);
+  s.roulette = kRouletteThroughput;
+  check_scene(kernels, analytic::make_point_in_sphere(a), ExpectedImage(144, glm::dvec3(want)), s);
+}
+
+void check_agree_on_cornell(const StageKernels& reference, const StageKernels& test, std::uint32_t seed) {
+  Scene scene = make_builtin_scene("cornell");
+  RenderSettings s = settings(32, 32, 64, seed);
+  s.roulette = kRouletteThroughput;
+  const int k = 16;  // batches: stage3 sees the small light by chance, its batch means are skewed
+  std::vector<Film> a = render_batches(reference, scene, s, k);
+  std::vector<Film> b = render_batches(test, scene, s, k);
+  const int regions = 17;  // 4 x 4 regions of 8 x 8 pixels, and the whole image
+  const double t_crit = student_two_sided_quantile(sidak_alpha(1e-3, regions * 3.0), 2 * k - 2);
+  auto region_mean = [](const Film& f, int r, int c) {
+    int x0 = r < 16 ? (r % 4) * 8 : 0, y0 = r < 16 ? (r / 4) * 8 : 0, w = r < 16 ? 8 : f.width();
+    double m = 0.0;
+    for (int y = y0; y < y0 + w; y++)
+      for (int x = x0; x < x0 + w; x++) m += f.mean(x, y)[c];
+    return m / (w * w);
+  };
+  int failures = 0;
+  for (int r = 0; r < regions; r++) {
+    for (int c = 0; c < 3; c++) {
+      double ma = 0, mb = 0, va = 0, vb = 0;
+      for (int i = 0; i < k; i++) ma += region_mean(a[i], r, c) / k, mb += region_mean(b[i], r, c) / k;
+      for (int i = 0; i < k; i++) {
+        va += std::pow(region_mean(a[i], r, c) - ma, 2) / (k - 1);
+        vb += std::pow(region_mean(b[i], r, c) - mb, 2) / (k - 1);
+      }
+      double se = std::sqrt(va / k + vb / k);
+      double t = se > 0.0 ? (ma - mb) / se : (ma == mb ? 0.0 : 1e9);
+      if (std::abs(t) >= t_crit) {
+        failures++;
+        UNSCOPED_INFO("region " << r << " channel " << c << ": " << reference.name << " " << ma << ", " << test.name
+                                << " " << mb << ", t " << t);
+      }
+    }
+  }
+  CHECK(failures == 0);
 }
 
 }  // namespace pt::test

@@ -1,4 +1,4 @@
-// The analytic images every path-tracing stage (2, 3, 4) must reproduce: the same scenes
+// The analytic images every path-tracing stage (2 to 5) must reproduce: the same scenes
 // and expected values for each stage's kernel, on the backend under test. Each function
 // CHECKs its scene against the closed form with variance-derived tolerances.
 #pragma once
@@ -32,5 +32,15 @@ void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool tri
 void check_mirror(const StageKernels& kernels, std::uint32_t seed);
 // A glass slab before an emitter: Le (1 - R) / (1 + R); invisible at ior 1.
 void check_glass_slab(const StageKernels& kernels, float ior, std::uint32_t seed);
+// A point light above a diffuse floor (light sampling only: stages 4 and 5), size x size
+// pixels: albedo I cos / (pi d^2), averaged over each pixel.
+void check_point_floor(const StageKernels& kernels, int size, std::uint32_t seed);
+// Inside a diffuse sphere with a point light at its centre (stages 4 and 5): every pixel
+// albedo I / (pi r^2) / (1 - albedo).
+void check_point_in_sphere(const StageKernels& kernels, std::uint32_t seed);
+// `test` and `reference` agree on the Cornell box (32 x 32, 64 spp, 16 batches each), over
+// the image and in 4 x 4 regions (the boxes' soft shadows among them), each channel:
+// Welch t-tests over the batches, Sidak-corrected over all of them.
+void check_agree_on_cornell(const StageKernels& reference, const StageKernels& test, std::uint32_t seed);
 
 }  // namespace pt::test
