@@ -20,25 +20,12 @@ namespace kernel {
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/lights.glsl"
 #include "cpu/kernel_support.h"
+#include "tests/support/kernel_scene_binding.h"
 }  // namespace kernel
 }  // namespace
 
 namespace {
 
-void bind(const pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
-  kernel::triangles = s.triangles.data();
-  kernel::spheres = s.spheres.data();
-  kernel::materials = s.materials.data();
-  kernel::point_lights = s.point_lights.data();
-  kernel::lights = s.lights.data();
-  kernel::params.triangle_count = uint(s.triangles.size());
-  kernel::params.sphere_count = uint(s.spheres.size());
-  kernel::params.material_count = uint(s.materials.size());
-  kernel::params.point_light_count = uint(s.point_lights.size());
-  kernel::params.light_count = uint(s.lights.size());
-  kernel::params.sky = sky;
-  kernel::params.sky_pick = pt::sky_pick_probability(s, sky);
-}
 
 // Solid angle of a triangle seen from the origin (Van Oosterom and Strackee 1983).
 double triangle_solid_angle(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
@@ -57,7 +44,7 @@ TEST_CASE("light sampling: the mean of 1/pdf is the solid angle a triangle or a 
   glm::vec3 p0(-0.4f, 1.0f, -0.3f), p1(0.7f, 1.2f, -0.2f), p2(0.1f, 0.9f, 0.8f);
   s.add_triangle(p0, p1, p2, light);  // facing down, towards the origin
   pt::build_light_table(s);
-  bind(s);
+  kernel::bind_scene(s);
   kernel::rng_seed(1u, 2u, pt::test::test_seed(3));
   const int n = 400000;
   double sum = 0.0, sum2 = 0.0;
@@ -79,7 +66,7 @@ TEST_CASE("light sampling: the mean of 1/pdf is the solid angle a triangle or a 
   uint lamp = t.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(2.0f)));
   t.add_sphere({0.0f, 3.0f, 1.0f}, 0.5f, lamp);
   pt::build_light_table(t);
-  bind(t);
+  kernel::bind_scene(t);
   double d2 = 10.0, cone = 2.0 * M_PI * (1.0 - std::sqrt(1.0 - 0.25 / d2));
   for (int i = 0; i < 1000; i++) {
     kernel::LightSample ls = kernel::sample_light(glm::vec3(0.0f), glm::vec3(0, 1, 0));
@@ -97,7 +84,7 @@ TEST_CASE("light sampling: the sampled point's pdf equals the pdf its evaluation
   s.add_triangle({-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1}, a);
   s.add_triangle({2, 0, 0}, {2, 1, 0}, {2, 0, 1}, b);
   pt::build_light_table(s);
-  bind(s, glm::vec3(0.2f));  // with a sky, whose share the pick probability leaves out
+  kernel::bind_scene(s, glm::vec3(0.2f));  // with a sky, whose share the pick probability leaves out
   kernel::rng_seed(4u, 5u, pt::test::test_seed(6));
   int checked = 0;
   for (int i = 0; i < 2000; i++) {
@@ -128,7 +115,7 @@ TEST_CASE("light sampling: lights are picked in proportion to their power", "[st
   CHECK(s.lights[2].pick == Approx(4.0 / 10.5).epsilon(1e-5));
   CHECK(s.lights[2].cumulative == 1.0f);
   CHECK(s.triangles[0].light == 0u);
-  bind(s);
+  kernel::bind_scene(s);
   CHECK(kernel::pick_light(0.0f) == 0u);
   CHECK(kernel::pick_light(0.05f) == 1u);
   CHECK(kernel::pick_light(0.99f) == 2u);

@@ -43,6 +43,7 @@ namespace kernel {
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/lights.glsl"
 #include "cpu/kernel_support.h"  // and through it mis.glsl (kernel_definitions.glsl)
+#include "tests/support/kernel_scene_binding.h"
 }  // namespace kernel
 }  // namespace
 
@@ -460,21 +461,6 @@ TEST_CASE("spherical triangles: every sample's ray hits the planar triangle", "[
 
 namespace {
 
-void bind(const pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
-  kernel::triangles = s.triangles.data();
-  kernel::spheres = s.spheres.data();
-  kernel::materials = s.materials.data();
-  kernel::point_lights = s.point_lights.data();
-  kernel::lights = s.lights.data();
-  kernel::params.triangle_count = uint(s.triangles.size());
-  kernel::params.sphere_count = uint(s.spheres.size());
-  kernel::params.material_count = uint(s.materials.size());
-  kernel::params.point_light_count = uint(s.point_lights.size());
-  kernel::params.light_count = uint(s.lights.size());
-  kernel::params.sky = sky;
-  kernel::params.sky_pick = pt::sky_pick_probability(s, sky);
-}
-
 // The light strategy's pdf of a light sample, as light_pdf (or sky_light_pdf) gives it for
 // the surface the sample's direction reaches, against the sample's own: within 1e-4
 // relative, plus what float rounding does to the distance and the cosine: of the direction
@@ -596,7 +582,7 @@ TEST_CASE("light_pdf: a light sample's pdf is light_pdf's for the surface its di
     s.add_triangle({-9, -0.5f, -9}, {0, -0.5f, 9}, {9, -0.5f, -9}, floor);
     pt::build_light_table(s);
     REQUIRE(s.lights.size() == 4);
-    bind(s);
+    kernel::bind_scene(s);
     kernel::rng_seed(1u, 2u, test_seed(6510));
     PdfTally tally;
     for (int i = 0; i < 20000; i++) {
@@ -627,7 +613,7 @@ TEST_CASE("light_pdf: a light sample's pdf is light_pdf's for the surface its di
     const float radius = 0.8f;
     s.add_sphere(center, radius, lamp);
     pt::build_light_table(s);
-    bind(s);
+    kernel::bind_scene(s);
     kernel::rng_seed(3u, 4u, test_seed(6520));
     PdfTally tally;
     for (int i = 0; i < 20000; i++) {
@@ -653,7 +639,7 @@ TEST_CASE("light_pdf: a light sample's pdf is light_pdf's for the surface its di
     uint lamp = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(1.0f), true));
     s.add_triangle({-1, 3, -1}, {1, 3, -1}, {0, 3, 1}, lamp);
     pt::build_light_table(s);
-    bind(s, glm::vec3(0.5f, 1.0f, 2.0f));
+    kernel::bind_scene(s, glm::vec3(0.5f, 1.0f, 2.0f));
     REQUIRE(kernel::params.sky_pick > 0.0f);
     REQUIRE(kernel::params.sky_pick < 1.0f);
     kernel::rng_seed(5u, 6u, test_seed(6530));
@@ -721,7 +707,7 @@ TEST_CASE("light sampling by solid angle: the mean of 1/pdf is the light's solid
   auto one_light = [](pt::Scene& s) {
     pt::build_light_table(s);
     REQUIRE(s.lights.size() == 1);
-    bind(s);
+    kernel::bind_scene(s);
   };
   auto mean_inverse_pdf = [](glm::vec3 p, int n, int& lost, double& se) {
     double sum = 0.0, sum2 = 0.0;

@@ -1,0 +1,19 @@
+// For tests that call kernel functions on the CPU directly (light sampling, spherical
+// triangles): bind a scene's arrays and the light-sampling parameters to the kernel's
+// globals (cpu/kernel_bindings.h), as the CPU backend does for a render. Include it inside
+// the test's own kernel namespace, after the kernel code; no include guard, since each test
+// file's namespace gets its own copy.
+inline void bind_scene(const ::pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
+  triangles = s.triangles.data();
+  spheres = s.spheres.data();
+  materials = s.materials.data();
+  point_lights = s.point_lights.data();
+  lights = s.lights.data();
+  params.triangle_count = uint(s.triangles.size());
+  params.sphere_count = uint(s.spheres.size());
+  params.material_count = uint(s.materials.size());
+  params.point_light_count = uint(s.point_lights.size());
+  params.light_count = uint(s.lights.size());
+  params.sky = sky;
+  params.sky_pick = ::pt::sky_pick_probability(s, sky);
+}
