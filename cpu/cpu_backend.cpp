@@ -42,6 +42,17 @@ class CpuBackend : public Backend {
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data(),
                          soa_->data.data(), soa_->stride};
+    // Textures and vertex colours; without them, neutral material entries for a copy of
+    // the kernel that has texture code (texture.glsl reads nothing more then).
+    if (uses_textures(scene)) {
+      scene_.triangle_attributes = scene.triangle_attributes.data();
+      scene_.material_textures = scene.material_textures.data();
+      scene_.textures = scene.textures.data();
+      scene_.texels = scene.texels.data();
+    } else {
+      neutral_ = neutral_material_textures(scene.materials.size());
+      scene_.material_textures = neutral_.data();
+    }
     wide_.reset();
     if (bvh && !bvh->nodes.empty()) {
       scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();
@@ -81,6 +92,7 @@ class CpuBackend : public Backend {
   KernelScene scene_{};
   std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test
   std::unique_ptr<WideBvh> wide_;     // the BVH collapsed for the SIMD walk, or none
+  std::vector<MaterialTextures> neutral_;  // material_textures[] of a scene without textures
 };
 
 }  // namespace

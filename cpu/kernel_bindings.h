@@ -26,6 +26,11 @@ inline const uint* bvh_indices = nullptr;
 // The same tree collapsed for the CPU's SIMD walk (cpu/wide_bvh.h), which replaces the
 // binary walk when set: nullptr when the binding had none (tests, the double-precision build).
 inline const pt::WideBvh* wide_bvh = nullptr;
+// Textures and vertex colours (common/kernel/texture.glsl): nullptr when the scene has none.
+inline const TriangleAttributes* triangle_attributes = nullptr;  // parallel to triangles[]
+inline const MaterialTextures* material_textures = nullptr;      // parallel to materials[]
+inline const Texture* textures = nullptr;                        // the texture table
+inline const uint* texels = nullptr;                             // 8-bit RGBA texels
 inline Triangle triangle_at(uint i) { return triangles[i]; }
 
 // The features this copy of the kernel is compiled for (cpu_variants.h): one copy per

@@ -15,6 +15,10 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   bvh_nodes = scene.bvh_nodes;
   bvh_indices = scene.bvh_indices;
   wide_bvh = scene.bvh_nodes != nullptr ? scene.wide_bvh : nullptr;  // the same tree, wide (wide_bvh.h)
+  triangle_attributes = scene.triangle_attributes;
+  material_textures = scene.material_textures;
+  textures = scene.textures;
+  texels = scene.texels;
   params = pass;
 }
 

@@ -2,7 +2,9 @@
 // gpu/kernel_bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
 // per-pass parameters (uniform), 5 the pass output, 6 the event counters, 7 the light
 // table (storage), 8 the triangles again as a uniform buffer (used when they fit), 9 and
-// 10 the BVH's nodes and triangle indices (storage; common/scene/bvh.h).
+// 10 the BVH's nodes and triangle indices (storage; common/scene/bvh.h), 11 to 14 the
+// triangles' attributes, the materials' textures, the texture table and the texels
+// (storage; common/kernel/texture.glsl).
 #pragma once
 
 #include <cstdint>
@@ -13,7 +15,7 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 11;
+constexpr uint32_t kBindingCount = 15;
 constexpr uint32_t kParamsBinding = 4;
 constexpr uint32_t kUniformTrianglesBinding = 8;
 

@@ -84,6 +84,19 @@ class GpuBackend : public Backend {
            "the BVH's nodes need");
     upload(bvh_indices_, has_bvh ? bvh->indices.data() : nullptr, has_bvh ? bvh->indices.size() * sizeof(uint) : 0,
            "the BVH's triangle list needs");
+    // Textures and vertex colours (common/kernel/texture.glsl), or placeholders without them.
+    // A kernel with texture code (--all-features) and a scene without textures reads neutral
+    // material entries (texture.glsl).
+    const bool textured = (features & kFeatureTextures) && uses_textures(scene);
+    upload(triangle_attributes_, scene.triangle_attributes.data(),
+           textured ? scene.triangle_attributes.size() * sizeof(TriangleAttributes) : 0, "the vertex attributes need");
+    const std::vector<MaterialTextures> neutral =
+        (features & kFeatureTextures) && !textured ? neutral_material_textures(scene.materials.size())
+                                                   : std::vector<MaterialTextures>();
+    upload(material_textures_, textured ? scene.material_textures.data() : neutral.data(),
+           (textured ? scene.material_textures.size() : neutral.size()) * sizeof(MaterialTextures));
+    upload(textures_, scene.textures.data(), textured ? scene.textures.size() * sizeof(Texture) : 0);
+    upload(texels_, scene.texels.data(), textured ? scene.texels.size() * sizeof(uint) : 0, "the textures need");
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
     // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
     std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
@@ -138,7 +151,8 @@ class GpuBackend : public Backend {
     const uint32_t width = params.width, height = params.height;
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_,   &materials_, &point_lights_,     &params_,
                                             &output_,    &counters_, &lights_,    &uniform_triangles_,
-                                            &bvh_nodes_, &bvh_indices_};
+                                            &bvh_nodes_, &bvh_indices_, &triangle_attributes_, &material_textures_,
+                                            &textures_,  &texels_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -252,12 +266,29 @@ class GpuBackend : public Backend {
   bool one_sample_ = false;   // the driver's loop budget ran out once: one sample per invocation
   Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_, uniform_triangles_;
   Buffer bvh_nodes_, bvh_indices_;  // bindings 9 and 10
+  Buffer triangle_attributes_, material_textures_, textures_, texels_;  // bindings 11 to 14
 };
 
 }  // namespace
 
 std::unique_ptr<Backend> create_backend(const StageKernels& kernels, const std::string& device) {
   return std::make_unique<GpuBackend>(kernels, device);
+}
+
+std::vector<VulkanDevice> vulkan_devices() {
+  std::vector<VulkanDevice> list;
+  for (const DeviceInfo& d : list_devices()) {
+    VulkanDevice::Type type = VulkanDevice::Type::other;
+    switch (d.type) {
+      case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: type = VulkanDevice::Type::discrete; break;
+      case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: type = VulkanDevice::Type::integrated; break;
+      case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: type = VulkanDevice::Type::virtual_gpu; break;
+      case VK_PHYSICAL_DEVICE_TYPE_CPU: type = VulkanDevice::Type::cpu; break;
+      default: break;
+    }
+    list.push_back(VulkanDevice{d.name, type});
+  }
+  return list;
 }
 
 }  // namespace pt::gpu

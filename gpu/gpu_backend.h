@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "common/render/backend.h"
 
@@ -13,5 +14,10 @@ namespace pt::gpu {
 // device: "" for the best device, an index, or part of a device name. Throws
 // pt::Error(kExitNoDevice) when there is no Vulkan, no device, or it cannot run the kernel.
 std::unique_ptr<Backend> create_backend(const StageKernels& kernels, const std::string& device);
+
+// The Vulkan devices and their kinds, without making a device or a pipeline (what
+// --backend auto weighs: common/app/app.h, Backends::gpu_devices). Throws
+// pt::Error(kExitNoDevice) when there is no Vulkan, no driver or no device.
+std::vector<VulkanDevice> vulkan_devices();
 
 }  // namespace pt::gpu

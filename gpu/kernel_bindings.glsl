@@ -19,6 +19,12 @@ layout(std430, set = 0, binding = 7) readonly buffer LightBuffer { Light lights[
 // placeholder when the render has none (then params.accel is kAccelNone).
 layout(std430, set = 0, binding = 9) readonly buffer BvhNodeBuffer { BvhNode bvh_nodes[]; };
 layout(std430, set = 0, binding = 10) readonly buffer BvhIndexBuffer { uint bvh_indices[]; };
+// Textures and vertex colours (common/kernel/texture.glsl); placeholders when the scene
+// has none (kFeatureTextures off).
+layout(std430, set = 0, binding = 11) readonly buffer TriangleAttributeBuffer { TriangleAttributes triangle_attributes[]; };
+layout(std430, set = 0, binding = 12) readonly buffer MaterialTextureBuffer { MaterialTextures material_textures[]; };
+layout(std430, set = 0, binding = 13) readonly buffer TextureBuffer { Texture textures[]; };
+layout(std430, set = 0, binding = 14) readonly buffer TexelBuffer { uint texels[]; };
 uint rng_state;  // the random-number state of one invocation
 uvec4 sampler_state;  // the sampler's state of one invocation (common/kernel/sampler.glsl)
 

@@ -84,10 +84,52 @@ VulkanContext::VulkanContext(const std::string& device_request) {
   }
 }
 
-void VulkanContext::create(const std::string& device_request) {
+namespace {
+
+// Opens libvulkan.so.1 (volk), or throws.
+void open_loader() {
   if (fault().no_loader || volkInitialize() != VK_SUCCESS) {
     throw Error(kExitNoDevice, std::string("no Vulkan loader (libvulkan.so.1) on this machine; ") + kNoVulkanHint);
   }
+}
+
+void throw_no_device() { throw Error(kExitNoDevice, std::string("no Vulkan device found; ") + kNoVulkanHint); }
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  open_loader();
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "staged path tracer";
+  app.apiVersion = VK_API_VERSION_1_1;
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult r = vkCreateInstance(&info, nullptr, &instance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER) throw Error(kExitNoDevice, std::string("no Vulkan driver; ") + kNoVulkanHint);
+  check(r, "creating an instance");
+  volkLoadInstanceOnly(instance);  // VulkanContext loads its own instance's functions again
+  uint32_t count = 0;
+  r = vkEnumeratePhysicalDevices(instance, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  if (r == VK_SUCCESS) r = vkEnumeratePhysicalDevices(instance, &count, devices.data());
+  std::vector<DeviceInfo> list;
+  if (r >= 0) {  // VK_INCOMPLETE: a device appeared in between; the ones read are listed
+    for (uint32_t i = 0; i < count && i < devices.size(); i++) {
+      VkPhysicalDeviceProperties p;
+      vkGetPhysicalDeviceProperties(devices[i], &p);
+      list.push_back(DeviceInfo{i, p.deviceName, p.deviceType});
+    }
+  }
+  vkDestroyInstance(instance, nullptr);
+  if (r < 0) check(r, "listing devices");
+  if (fault().no_device) list.clear();
+  if (list.empty()) throw_no_device();
+  return list;
+}
+
+void VulkanContext::create(const std::string& device_request) {
+  open_loader();
   // [excerpt instance] (docs/vulkan_backend.md)
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "staged path tracer";
@@ -131,9 +173,7 @@ void VulkanContext::create(const std::string& device_request) {
   std::vector<VkPhysicalDevice> devices(count);
   check(vkEnumeratePhysicalDevices(instance_, &count, devices.data()), "listing devices");
   if (fault().no_device) count = 0;
-  if (count == 0) {
-    throw Error(kExitNoDevice, std::string("no Vulkan device found; ") + kNoVulkanHint);
-  }
+  if (count == 0) throw_no_device();
 
   // [excerpt choose_device] (docs/vulkan_backend.md)
   // Choose: the request (index or name) if any, else the best type.

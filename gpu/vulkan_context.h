@@ -16,10 +16,16 @@ namespace pt::gpu {
 void check(VkResult result, const char* what);
 
 struct DeviceInfo {
-  uint32_t index;
+  uint32_t index;  // what --device N names
   std::string name;
   VkPhysicalDeviceType type;
 };
+
+// The Vulkan devices in the loader's order, found cheaply: a bare instance is made and
+// destroyed, no device and no pipeline (what --backend auto weighs; VulkanContext makes the
+// device). Throws pt::Error(kExitNoDevice) when there is no loader, no driver or no device
+// (PT_FAULT=no_loader and no_device too), with the same words as VulkanContext.
+std::vector<DeviceInfo> list_devices();
 
 class VulkanContext {
  public:

@@ -3,6 +3,7 @@
 // own. C++ only; included inside the kernel's namespace in place of the integrator.
 #include "common/kernel/rng.glsl"  // what both versions use, outside the namespaces below
 #include "common/kernel/intersect.glsl"
+#include "common/kernel/texture.glsl"
 
 namespace reference {
 #include "stage1_raycast/integrator.glsl"

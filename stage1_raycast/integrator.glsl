@@ -6,13 +6,14 @@
 #include "common/kernel/rng.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "common/kernel/texture.glsl"
 
 // Eq. (2): the radiance leaving the first surface towards the camera is its own.
 vec3 Li(Ray ray) {
   Hit hit = intersect_scene(ray, kInfinity);
   if (hit.kind == kPrimNone) return params.sky;
   Surface surface = surface_at(ray, hit);
-  Material material = materials[surface.material];
+  Material material = surface_material(surface);
   // Le: an emitter shines from its front face, or from both when double-sided.
   bool emits = max(material.emission.x, max(material.emission.y, material.emission.z)) > 0.0f;
   if (emits && (surface.front || material.double_sided != 0u)) return material.emission;

@@ -9,9 +9,10 @@
 int main(int argc, char** argv) {
   const pt::Stage stage{pt::StageInfo{.name = "stage1_raycast",
                                       .summary = "raycasting, Eq. (2): Lout = Le",
-                                      .default_spp = 1},
+                                      .default_spp = 1,
+                                      .every_surface_emits = true},
                         stage1::kernels(),
-                        {pt::make_cpu_backend, pt::gpu::create_backend}};
+                        {pt::make_cpu_backend, pt::gpu::create_backend, pt::gpu::vulkan_devices}};
   return pt::run_guarded(stage.info.name, [&] {
     std::optional<pt::Options> options = pt::read_options(argc, argv, stage);
     if (!options) return 0;                  // --help was printed

@@ -6,6 +6,7 @@
 #include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "common/kernel/texture.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
 #include "common/kernel/spawn.glsl"
@@ -22,7 +23,7 @@ vec3 Li(Ray ray) {
       break;
     }
     Surface surface = surface_at(ray, hit);
-    Material material = materials[surface.material];
+    Material material = surface_material(surface);
     // Le: in the article's Eq. (3) every hit adds its emission.
     L += beta * emitted_radiance(material, surface.front);
 

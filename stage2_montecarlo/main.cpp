@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
                                       .has_roulette = true,
                                       .default_roulette = pt::kRouletteFixed},
                         stage2::kernels(),
-                        {pt::make_cpu_backend, pt::gpu::create_backend}};
+                        {pt::make_cpu_backend, pt::gpu::create_backend, pt::gpu::vulkan_devices}};
   return pt::run_guarded(stage.info.name, [&] {
     std::optional<pt::Options> options = pt::read_options(argc, argv, stage);
     if (!options) return 0;                  // --help was printed

@@ -6,6 +6,7 @@
 #include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "common/kernel/texture.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
 #include "common/kernel/spawn.glsl"
@@ -25,7 +26,7 @@ vec3 Li(Ray ray) {
       break;
     }
     Surface surface = surface_at(ray, hit);
-    Material material = materials[surface.material];
+    Material material = surface_material(surface);
     // Le only where light sampling could not have found it (erratum 6): on camera rays and
     // after delta bounces; everywhere else it was counted as direct light already.
     if (specular) L += beta * emitted_radiance(material, surface.front);

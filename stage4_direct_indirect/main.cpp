@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
                                       .default_roulette = pt::kRouletteThroughput,
                                       .sees_point_lights = true},
                         stage4::kernels(),
-                        {pt::make_cpu_backend, pt::gpu::create_backend}};
+                        {pt::make_cpu_backend, pt::gpu::create_backend, pt::gpu::vulkan_devices}};
   return pt::run_guarded(stage.info.name, [&] {
     std::optional<pt::Options> options = pt::read_options(argc, argv, stage);
     if (!options) return 0;                  // --help was printed

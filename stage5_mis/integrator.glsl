@@ -10,6 +10,7 @@
 #include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
+#include "common/kernel/texture.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
 #include "common/kernel/spawn.glsl"
@@ -39,7 +40,7 @@ vec3 Li(Ray ray) {
       break;
     }
     Surface surface = surface_at(ray, hit);
-    Material material = materials[surface.material];
+    Material material = surface_material(surface);
     vec3 Le = emitted_radiance(material, surface.front);
     if (max_component(Le) > 0.0f) {
       // Emission found by a BSDF sample, weighed against the light sample that could have

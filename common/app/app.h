@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/app/image_output.h"
 #include "common/app/options.h"
@@ -21,6 +22,10 @@ struct Backends {
   std::unique_ptr<Backend> (*cpu)(const StageKernels& kernels, unsigned threads);
   // Throws pt::Error(kExitNoDevice) when no usable Vulkan device exists.
   std::unique_ptr<Backend> (*gpu)(const StageKernels& kernels, const std::string& device);
+  // The Vulkan devices, listed without making a device or a pipeline (gpu::vulkan_devices):
+  // what --backend auto weighs. Throws pt::Error(kExitNoDevice) like gpu. nullptr: auto
+  // takes the CPU.
+  std::vector<VulkanDevice> (*gpu_devices)() = nullptr;
 };
 
 // A stage program: what its command line says about it, its kernel, its backends.
@@ -39,11 +44,25 @@ int run_guarded(const char* program, const std::function<int()>& body, int inter
 // the image's memory checked.
 std::optional<Options> read_options(int argc, char** argv, const Stage& stage);
 
-// The scene of --scene, with a word on stderr about lights this stage cannot see.
-Scene load_stage_scene(const Options& options, const Stage& stage);
+// The scene of --scene with its camera chosen (--camera, else the first met, else one that
+// frames the bounds), the image's size completed by the camera's aspectRatio, and a word on
+// stderr about lights this stage cannot see and about a scene that will render black.
+Scene load_stage_scene(Options& options, const Stage& stage);
 
-// --backend cpu, gpu, or auto (gpu when a device exists, else cpu, saying so on stderr).
+// --backend cpu, gpu, or auto: the GPU backend on a real GPU (auto_backend_choice), or on
+// the device that --device or PT_VULKAN_DEVICE names, whatever its kind; else the CPU. auto
+// says on stderr which, and why, in one line; when the GPU backend cannot be made, the CPU.
 std::unique_ptr<Backend> choose_backend(const Options& options, const Stage& stage);
+
+// --backend auto without --device or PT_VULKAN_DEVICE: the GPU backend when `devices` hold a
+// real GPU (discrete, integrated, or virtual: a real GPU passed through to a virtual machine),
+// else the CPU; a device that emulates a GPU on the CPU (lavapipe) runs slower than the
+// CPU backend. `why` is what stderr says, e.g. "GPU NVIDIA GeForce RTX 3060 (discrete)".
+struct AutoBackendChoice {
+  bool gpu;
+  std::string why;
+};
+AutoBackendChoice auto_backend_choice(const std::vector<VulkanDevice>& devices);
 
 // Renders in passes, from a checkpoint with --resume and saving one with --checkpoint. When
 // the device fails under --backend auto, the CPU goes on from the samples done (backend

@@ -70,9 +70,12 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
                  "image bit for bit, other splits to float rounding")
       ->type_name("FIRST:COUNT");
   app.add_option("--seed", o.render.seed, "random seed: same seed, options and backend give the same image")->capture_default_str();
-  app.add_option("--backend", o.backend, "auto (gpu if a Vulkan device exists, else cpu), cpu or gpu")
+  app.add_option("--backend", o.backend,
+                 "auto (gpu on a real GPU or on the device --device names, else cpu; says which on stderr), "
+                 "cpu, or gpu (any Vulkan device, lavapipe too)")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
   app.add_option("--device", o.device, "Vulkan device: index or part of its name (env PT_VULKAN_DEVICE)");
+  app.add_option("--camera", o.camera, "which of the glTF file's cameras: its index N or its (node's) name; default the first met");
   app.add_option("--out", o.out, "output image: .exr (linear float), .png (8-bit sRGB) or .hdr")->capture_default_str();
   app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
   app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
@@ -123,6 +126,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.render.sky = parse_rgb(sky, "--sky");
+  o.width_given = app.count("--width") > 0;
+  o.height_given = app.count("--height") > 0;
   if (!samples.empty()) {
     if (app.count("--spp")) throw Error(kExitBadOption, "--spp and --samples both give the samples: use one (--spp N is --samples 0:N)");
     parse_sample_range(samples, o.render);

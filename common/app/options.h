@@ -19,6 +19,7 @@ struct StageInfo {
   bool has_roulette = false;        // paths end by Russian roulette (stage2 onwards): --rr
   std::uint32_t default_roulette = 0;  // kRouletteFixed (the article) or kRouletteThroughput
   bool sees_point_lights = false;   // light sampling (stage4) sees delta lights
+  bool every_surface_emits = false; // stage1: surfaces show their base colour, so no scene is black
 };
 
 struct Options {
@@ -33,6 +34,9 @@ struct Options {
   bool resume = false;                    // --resume [PATH]: continue a checkpoint
   std::string resume_path;                // its path (default <out>.ckpt)
   std::string error_map;                  // --error-map PATH: each pixel's relative error (error_map.h)
+  std::string camera;                     // --camera N|NAME: which of the file's cameras ("" = the first met)
+  bool width_given = false;               // --width / --height were on the command line (a camera's
+  bool height_given = false;              // aspectRatio sets the height when only the width is)
 };
 
 // Parses argv; prints the help and returns nothing for --help; throws pt::Error(2) with

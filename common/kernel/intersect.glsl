@@ -182,12 +182,18 @@ bool occluded_scene(Ray ray, float t_max) {
   return false;
 }
 
+// Surface.triangle of a point on a sphere.
+const uint kNoTriangle = 0xffffffffu;
+
 // What the integrator needs to know about the point a ray hit.
 struct Surface {
   vec3 p;         // position
   vec3 n;         // unit geometric normal on the front side (CCW winding, sphere outside)
   bool front;     // the ray arrived from the front side
   uint material;  // index into materials[]
+  uint triangle;  // index into triangles[] (and triangle_attributes[]), or kNoTriangle
+  float b1;       // barycentric weights of p1 and p2 at p (triangles): where its
+  float b2;       // textures are read (texture.glsl: surface_material)
 };
 
 Surface surface_at(Ray ray, Hit hit) {
@@ -199,13 +205,13 @@ Surface surface_at(Ray ray, Hit hit) {
     // The barycentric point is more accurate than origin + t * dir far from the origin.
     vec3 p = (1.0f - hit.b1 - hit.b2) * p0 + hit.b1 * p1 + hit.b2 * p2;
     vec3 n = normalize(cross(p1 - p0, p2 - p0));
-    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.material);
+    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.material, hit.prim, hit.b1, hit.b2);
   }
   Sphere sph = spheres[hit.prim];
   vec3 center = sph.center;
   vec3 p = ray.origin + hit.t * ray.dir;
   vec3 n = normalize(p - center);
-  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.material);
+  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.material, kNoTriangle, 0.0f, 0.0f);
 }
 
 #endif  // PT_INTERSECT_GLSL

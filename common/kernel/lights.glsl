@@ -14,6 +14,7 @@
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/spherical_triangle.glsl"
+#include "common/kernel/texture.glsl"
 
 struct LightSample {
   vec3 wi;         // unit direction from the shading point towards the light
@@ -170,7 +171,7 @@ LightSample sample_triangle_light_by_solid_angle(uint index, vec3 p, vec2 u, flo
   float dist = dot(vec3(tri.p0) - p, normal) / dot(wi, normal);
   if (!(dist > 0.0f) || isinf(dist)) return no_light();
   float pdf = pick / t.area;
-  return LightSample(wi, dist, vec3(materials[tri.material].emission) / pdf, pdf);
+  return LightSample(wi, dist, triangle_emission_at(index, p + dist * wi) / pdf, pdf);
 }
 
 // One light sample for the shading point p with normal n (on the side light may come from),

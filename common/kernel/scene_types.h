@@ -10,7 +10,9 @@
 #include <cstddef>
 #include <cstdint>
 namespace pt {
+using glm::vec2;
 using glm::vec3;
+using glm::vec4;
 using uint = std::uint32_t;
 #endif
 
@@ -71,7 +73,17 @@ const uint kFeatureTriangleLights = 1u << 7u;   // lights
 const uint kFeatureSphereLights = 1u << 8u;
 const uint kFeaturePointLights = 1u << 9u;
 const uint kFeatureSky = 1u << 10u;
-const uint kFeatureAll = (1u << 11u) - 1u;
+const uint kFeatureTextures = 1u << 11u;        // textures or vertex colours (texture.glsl)
+const uint kFeatureAll = (1u << 12u) - 1u;
+
+// Textures (common/kernel/texture.glsl, issue #19): what a sampler does at the edges and
+// between texels (glTF's sampler wrapS / wrapT and magFilter), and "no texture".
+const uint kNoTexture = 0xffffffffu;
+const uint kWrapRepeat = 0u;          // glTF REPEAT (10497), the default
+const uint kWrapClampToEdge = 1u;     // glTF CLAMP_TO_EDGE (33071)
+const uint kWrapMirroredRepeat = 2u;  // glTF MIRRORED_REPEAT (33648)
+const uint kFilterLinear = 0u;        // bilinear between the 4 nearest texels, the default
+const uint kFilterNearest = 1u;       // glTF magFilter NEAREST (9728): the nearest texel
 
 // Event counters the kernels keep (counters[] of cpu/kernel_bindings.h and gpu/kernel_bindings.glsl), reported by the summary.
 const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a safety net)
@@ -164,6 +176,51 @@ struct FrameParams {
   uint sampler_kind;       // kSampler*: which numbers feed the estimator (sampler.glsl)
 };
 
+// One entry of the texture table: an image in texels[] (8-bit RGBA, R in the low byte,
+// rows from the image's top, as glTF's uv (0, 0) is its top-left corner) and its sampler.
+struct Texture {
+  uint offset;     // the first texel in texels[]
+  uint width;      // in texels
+  uint height;
+  uint wrap_s;     // kWrap* along u
+  uint wrap_t;     // kWrap* along v
+  uint mag_filter; // kFilter*; also used when minifying (there are no mipmaps)
+  uint texel_min;  // each channel's smallest texel, packed like the texels (the host's
+  uint texel_max;  // feature mask reads them: the material kinds a texture can reach)
+};
+
+// The textures of one material, parallel to materials[] (empty when the scene has no
+// textures and no vertex colours). Each slot: a texture index (or kNoTexture) and its
+// KHR_texture_transform as the two rows of a 2x3 matrix: s = dot(row_s, (u, v, 1)).
+struct MaterialTextures {
+  vec3 base_color_s;           // base colour texture (sRGB), row s of its uv transform
+  uint base_color;             // textures[] index, or kNoTexture
+  vec3 base_color_t;           // row t
+  float metallic_factor;       // pbrMetallicRoughness.metallicFactor
+  vec3 emissive_s;             // emissive texture (sRGB)
+  uint emissive;
+  vec3 emissive_t;
+  float roughness_factor;      // pbrMetallicRoughness.roughnessFactor
+  vec3 metallic_roughness_s;   // metallic-roughness texture (linear: roughness G, metallic B)
+  uint metallic_roughness;
+  vec3 metallic_roughness_t;
+  uint enabled;                // 1 in a scene's own entries; 0 in the neutral entries a
+                               // backend binds for a scene without textures (nothing more is read)
+};
+
+// What a triangle carries besides its corners, parallel to triangles[] (empty when the
+// scene has no textures and no vertex colours): TEXCOORD_0 and COLOR_0 at its corners
+// (uv (0, 0) and colour 1 where the primitive has none).
+struct TriangleAttributes {
+  vec2 uv0;      // TEXCOORD_0 at p0
+  vec2 uv1;      // at p1
+  vec2 uv2;      // at p2
+  vec2 pad;      // unused
+  vec4 color0;   // COLOR_0 at p0 (RGBA, linear)
+  vec4 color1;
+  vec4 color2;
+};
+
 // One node of the bounding volume hierarchy over the triangles (common/scene/bvh.h), in a
 // flat array with the root at 0. An inner node's children are nodes first_or_left and
 // first_or_left + 1; a leaf's triangles are bvh_indices[first_or_left ... + count - 1].
@@ -191,6 +248,11 @@ static_assert(offsetof(FrameParams, sky) == 64 && offsetof(FrameParams, width) =
 static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParams, seed) == 112);
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);
 static_assert(offsetof(FrameParams, accel) == 136 && offsetof(FrameParams, sampler_kind) == 140);
+static_assert(sizeof(Texture) == 32);
+static_assert(sizeof(MaterialTextures) == 96 && offsetof(MaterialTextures, emissive_s) == 32);
+static_assert(offsetof(MaterialTextures, metallic_roughness_s) == 64 && offsetof(MaterialTextures, enabled) == 92);
+static_assert(sizeof(TriangleAttributes) == 80 && offsetof(TriangleAttributes, uv2) == 16);
+static_assert(offsetof(TriangleAttributes, color0) == 32 && offsetof(TriangleAttributes, color2) == 64);
 static_assert(sizeof(BvhNode) == 32 && offsetof(BvhNode, hi) == 16 && offsetof(BvhNode, count) == 28);
 }  // namespace pt
 #endif

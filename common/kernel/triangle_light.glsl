@@ -5,6 +5,7 @@
 #define PT_TRIANGLE_LIGHT_GLSL
 
 #include "common/kernel/lights.glsl"
+#include "common/kernel/texture.glsl"
 
 // A point uniform on the triangle: density 1 / area (Turk's square-root mapping).
 LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
@@ -27,7 +28,9 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   if (m.double_sided != 0u) cos_y = abs(cos_y);
   if (!(cos_y > 0.0f) || !(dist > 0.0f)) return no_light();
   float pdf = dist2 / (cos_y * area) * pick;  // area pdf 1/A turned into solid angle
-  return LightSample(wi, dist, vec3(m.emission) / pdf, pdf);
+  // Le at y: the emission times the emissive texture there (texture.glsl), at y's
+  // barycentric weights su (1 - u.y) of p1 and su u.y of p2.
+  return LightSample(wi, dist, triangle_emission(index, su * (1.0f - u.y), su * u.y) / pdf, pdf);
 }
 
 #endif  // PT_TRIANGLE_LIGHT_GLSL

@@ -31,6 +31,11 @@ struct KernelScene {
   const BvhNode* bvh_nodes = nullptr;  // the BVH (common/scene/bvh.h), or nullptr
   const uint* bvh_indices = nullptr;
   const WideBvh* wide_bvh = nullptr;   // the same tree for the CPU's SIMD walk, or nullptr
+  // Textures and vertex colours (common/kernel/texture.glsl), or nullptr without them.
+  const TriangleAttributes* triangle_attributes = nullptr;
+  const MaterialTextures* material_textures = nullptr;
+  const Texture* textures = nullptr;
+  const uint* texels = nullptr;
 };
 
 // A stage's kernel compiled as C++ (cpu/kernel_entry.h).
@@ -47,6 +52,15 @@ struct StageKernels {
                                          // copy alone is the general kernel
   std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
   bool uses_light_table = false;         // reads lights[] and point_lights[] (stage4)
+};
+
+// A Vulkan device as --backend auto weighs it (common/app/app.h, Backends::gpu_devices):
+// its name and its kind, listed by gpu/gpu_backend.h's vulkan_devices without making a
+// device or a pipeline. `cpu` is an emulation on the processor, such as Mesa's lavapipe.
+struct VulkanDevice {
+  enum class Type { discrete, integrated, virtual_gpu, cpu, other };
+  std::string name;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  Type type;
 };
 
 // What a pass reports besides its image.

@@ -30,6 +30,31 @@ uint cornell_room(Scene& s) {
   return white;
 }
 
+// The back wall of cornell_room (its triangles 4 and 5) made textured: a 4 x 4 checkerboard
+// of sRGB white and grey repeated twice each way, bilinear, times vertex colours that shade
+// its corners pink, green and blue (texture.glsl).
+void add_textured_back_wall(Scene& s) {
+  uint wall = s.add_material(make_diffuse(glm::vec3(0.73f)));
+  s.material_textures.assign(s.materials.size(), no_material_textures());
+  s.triangle_attributes.assign(s.triangles.size(), no_triangle_attributes());
+  const uint white = 0xffffffffu, grey = 0xff808080u;
+  s.textures.push_back(Texture{uint(s.texels.size()), 4u, 4u, kWrapRepeat, kWrapRepeat, kFilterLinear, grey, white});
+  for (uint y = 0; y < 4; y++) {
+    for (uint x = 0; x < 4; x++) s.texels.push_back((x + y) % 2 ? grey : white);
+  }
+  s.material_textures[wall].base_color = uint(s.textures.size() - 1);
+  // Corners (-1,-1) (1,-1) (1,1) (-1,1) of the wall, as add_room's quad: triangles 012, 023.
+  const glm::vec2 uv[4] = {{0, 2}, {2, 2}, {2, 0}, {0, 0}};
+  const glm::vec4 color[4] = {{1.0f, 0.8f, 0.8f, 1.0f}, {0.8f, 1.0f, 0.8f, 1.0f}, {0.8f, 0.8f, 1.0f, 1.0f}, glm::vec4(1.0f)};
+  const int corners[2][3] = {{0, 1, 2}, {0, 2, 3}};
+  for (int t = 0; t < 2; t++) {
+    const int* c = corners[t];
+    s.triangles[4 + t].material = wall;
+    s.triangle_attributes[4 + t] = TriangleAttributes{uv[c[0]], uv[c[1]], uv[c[2]], glm::vec2(0.0f),
+                                                      color[c[0]], color[c[1]], color[c[2]]};
+  }
+}
+
 void short_box(Scene& s, uint material) { add_box(s, {0.33f, -0.7f, 0.3f}, {0.3f, 0.3f, 0.3f}, -0.31f, material); }
 void tall_box(Scene& s, uint material) { add_box(s, {-0.35f, -0.4f, -0.3f}, {0.3f, 0.6f, 0.3f}, 0.29f, material); }
 
@@ -62,8 +87,8 @@ Scene cornell_glass() {
 
 // Every feature the renderer models in one room (issue "model only what a scene
 // requires": the general kernel's own scene): triangles and spheres; diffuse, mirror,
-// GGX, glass and mixed materials; emissive triangles, an emissive sphere and a point
-// light (render it with --sky for the last feature).
+// GGX, glass and mixed materials; a textured back wall with vertex colours; emissive
+// triangles, an emissive sphere and a point light (render it with --sky for the last feature).
 Scene every_feature() {
   Scene s;
   cornell_room(s);
@@ -72,6 +97,7 @@ Scene every_feature() {
   s.add_sphere({-0.5f, -0.75f, 0.5f}, 0.25f, s.add_material(make_glass(glm::vec3(1.0f), 1.5f)));
   s.add_sphere({0.5f, 0.1f, -0.5f}, 0.2f, s.add_material(make_metal(glm::vec3(0.9f), 0.0f)));
   s.add_sphere({0.0f, 0.6f, 0.3f}, 0.05f, s.add_material(make_diffuse(glm::vec3(0.0f), {20.0f, 20.0f, 30.0f})));
+  add_textured_back_wall(s);
   s.point_lights.push_back(PointLight{glm::vec3(0.6f, 0.8f, 0.6f), 0.0f, glm::vec3(0.3f, 0.3f, 0.2f), 0.0f});
   return s;
 }

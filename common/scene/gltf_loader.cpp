@@ -14,6 +14,7 @@
 
 #include "common/base/error.h"
 #include "common/scene/gltf_materials.h"
+#include "common/scene/gltf_textures.h"
 #include "common/scene/gltf_validate.h"
 #include "common/scene/scene_loading.h"
 
@@ -23,12 +24,6 @@ namespace {
 
 using gltf::checked_float;
 using gltf::fail;
-
-// Textures are not modelled: images are kept undecoded.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                void*) {
-  return true;
-}
 
 // tinygltf looks for buffers in the scene's folder, then in the working directory; only
 // the scene's folder counts (user_data is the folder, "" for the working directory).
@@ -40,7 +35,7 @@ bool exists_in_scene_folder(const std::string& file, void* user_data) {
 
 tinygltf::Model parse_model(gltf::SourceFile& source, const std::string& path) {
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetImageLoader(&gltf::keep_image_bytes, nullptr);  // OpenImageIO decodes them (gltf_textures.cpp)
   loader.SetFsCallbacks({&exists_in_scene_folder, &tinygltf::ExpandFilePath, &tinygltf::ReadWholeFile,
                          &tinygltf::WriteWholeFile, &source.base_dir});
   tinygltf::Model model;
@@ -73,9 +68,6 @@ glm::dmat4 local_transform(const tinygltf::Node& node) {
 }
 
 void warn_unmodelled(const tinygltf::Model& model, const std::string& file) {
-  if (!model.textures.empty() || !model.images.empty()) {
-    warn_once(file + ": scene uses textures; they are not modelled (base colour factors only)");
-  }
   if (!model.animations.empty())
     warn_once(file + ": scene has animations; they are not modelled (drawn at rest)");
   if (!model.skins.empty()) warn_once(file + ": scene has skins; they are not modelled (drawn in bind pose)");
@@ -84,7 +76,8 @@ void warn_unmodelled(const tinygltf::Model& model, const std::string& file) {
 // Walks the default scene and fills a pt::Scene.
 class SceneBuilder {
  public:
-  SceneBuilder(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file) {
+  SceneBuilder(const tinygltf::Model& model, const std::string& file)
+      : model_(model), file_(file), textures_(model, file) {
     scene_.name = file;
   }
 
@@ -103,14 +96,24 @@ class SceneBuilder {
     }
   }
 
-  Scene take() { return std::move(scene_); }
+  // The scene; textures and vertex colours when a drawn triangle has them (both arrays
+  // then parallel to materials and triangles), their images decoded now.
+  Scene take() {
+    if (attributes_on_) {
+      attributes_.resize(scene_.triangles.size(), no_triangle_attributes());
+      scene_.triangle_attributes = std::move(attributes_);
+      scene_.material_textures = material_textures_;
+      textures_.decode_into(scene_);
+    }
+    return std::move(scene_);
+  }
 
  private:
   void add_node(int index, const tinygltf::Node& node, const glm::dmat4& world) {
     std::string where = "nodes[" + std::to_string(index) + "]";
     if (!all_finite(world))
       fail(file_, where + ": its world transform overflows 32-bit floats: " + gltf::kReexport);
-    if (node.camera != -1) add_camera(node.camera, world, where);
+    if (node.camera != -1) add_camera(node.camera, world, node, where);
     if (node.mesh != -1) add_mesh(node.mesh, world);
     auto light = node.extensions.find("KHR_lights_punctual");
     if (light != node.extensions.end()) add_light(light->second.Get("light").GetNumberAsInt(), world);
@@ -125,30 +128,33 @@ class SceneBuilder {
     return true;
   }
 
-  void add_camera(int index, const glm::dmat4& world, const std::string& node) {
-    if (scene_.camera) {
-      warn_once(file_ + ": scene has more than one camera; using the first one met (" + first_camera_ + ")");
-      return;
+  // Every camera of the default scene, in the order met (a camera that several nodes place:
+  // at the first); the first is the scene's camera until --camera picks another.
+  void add_camera(int index, const glm::dmat4& world, const tinygltf::Node& node, const std::string& where) {
+    for (const SceneCamera& c : scene_.cameras) {
+      if (c.index == index) return;
     }
     const tinygltf::Camera& c = model_.cameras[index];
-    std::string where = "cameras[" + std::to_string(index) + "]";
+    std::string what = "cameras[" + std::to_string(index) + "]";
     CameraDesc desc;
     desc.to_world = glm::mat4(world);
     if (c.type == "perspective") {
       desc.kind = kCameraPerspective;
-      desc.yfov = checked_float(file_, c.perspective.yfov, where + ".perspective.yfov", 1e-6, 3.14159);
+      desc.yfov = checked_float(file_, c.perspective.yfov, what + ".perspective.yfov", 1e-6, 3.14159);
+      if (c.perspective.aspectRatio != 0.0)
+        desc.aspect_ratio = checked_float(file_, c.perspective.aspectRatio, what + ".perspective.aspectRatio", 1e-6, 1e6);
     } else if (c.type == "orthographic") {
       desc.kind = kCameraOrthographic;
-      desc.xmag = checked_float(file_, c.orthographic.xmag, where + ".orthographic.xmag");
-      desc.ymag = checked_float(file_, c.orthographic.ymag, where + ".orthographic.ymag");
+      desc.xmag = checked_float(file_, c.orthographic.xmag, what + ".orthographic.xmag");
+      desc.ymag = checked_float(file_, c.orthographic.ymag, what + ".orthographic.ymag");
       if (desc.xmag == 0.0f || desc.ymag == 0.0f)
-        fail(file_, where + ": xmag and ymag must not be zero; re-export it");
+        fail(file_, what + ": xmag and ymag must not be zero; re-export it");
     } else {
       fail(file_,
-           where + ".type '" + c.type + "' is neither perspective nor orthographic: " + gltf::kReexport);
+           what + ".type '" + c.type + "' is neither perspective nor orthographic: " + gltf::kReexport);
     }
-    scene_.camera = desc;
-    first_camera_ = node;
+    if (!scene_.camera) scene_.camera = desc;
+    scene_.cameras.push_back(SceneCamera{desc, index, c.name, node.name.empty() ? where : node.name});
   }
 
   void add_light(int index, const glm::dmat4& world) {
@@ -210,6 +216,28 @@ class SceneBuilder {
                       " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
     }
     uint material = material_index(prim.material);
+    // TEXCOORD_0 where the material has a texture, COLOR_0 where the primitive has one.
+    const MaterialTextures& mt = material_textures_[material];
+    const bool textured =
+        mt.base_color != kNoTexture || mt.emissive != kNoTexture || mt.metallic_roughness != kNoTexture;
+    std::vector<glm::vec2> uv;
+    std::vector<glm::vec4> colors;
+    auto texcoord = prim.attributes.find("TEXCOORD_0"), color = prim.attributes.find("COLOR_0");
+    if (textured && texcoord != prim.attributes.end()) {
+      uv = gltf::read_texcoords(model_, texcoord->second, positions.size(), file_,
+                                "accessors[" + std::to_string(texcoord->second) + "] (TEXCOORD_0 of " + where + ")");
+    } else if (textured) {
+      warn_once(file_ + ": " + where + " has a textured material but no TEXCOORD_0; its textures are read at uv (0, 0)");
+    }
+    if (color != prim.attributes.end()) {
+      colors = gltf::read_colors(model_, color->second, positions.size(), file_,
+                                 "accessors[" + std::to_string(color->second) + "] (COLOR_0 of " + where + ")");
+    }
+    // The attributes start with the first triangle that needs them (those before get the defaults).
+    if ((textured || !colors.empty()) && !attributes_on_) {
+      attributes_.assign(scene_.triangles.size(), no_triangle_attributes());
+      attributes_on_ = true;
+    }
     for (std::size_t t = 0; t < indices.size(); t += 3) {
       glm::vec3 p[3];
       for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::dvec4(positions[indices[t + k]], 1.0));
@@ -220,6 +248,13 @@ class SceneBuilder {
         continue;
       }
       scene_.add_triangle(p[0], p[1], p[2], material);
+      if (!attributes_on_) continue;
+      TriangleAttributes a = no_triangle_attributes();
+      if (!uv.empty()) a.uv0 = uv[indices[t]], a.uv1 = uv[indices[t + 1]], a.uv2 = uv[indices[t + 2]];
+      if (!colors.empty()) {
+        a.color0 = colors[indices[t]], a.color1 = colors[indices[t + 1]], a.color2 = colors[indices[t + 2]];
+      }
+      attributes_.push_back(a);
     }
   }
 
@@ -230,6 +265,8 @@ class SceneBuilder {
     Material m = gltf_index == -1
                      ? make_gltf_material(glm::vec3(1.0f), 1.0f, 1.0f, 0.0f, 1.5f, glm::vec3(0.0f), false)
                      : gltf::convert_material(model_, gltf_index, file_);
+    // Its textures (noted now, decoded by take() if a drawn triangle uses them).
+    material_textures_.push_back(gltf_index == -1 ? no_material_textures() : textures_.material_textures(gltf_index));
     return materials_[gltf_index] = scene_.add_material(m);
   }
 
@@ -237,7 +274,10 @@ class SceneBuilder {
   std::string file_;
   Scene scene_;
   std::map<int, uint> materials_;  // glTF material index -> Scene::materials index
-  std::string first_camera_;       // the node whose camera is used
+  gltf::TextureBuilder textures_;   // the textures the materials read
+  std::vector<MaterialTextures> material_textures_;  // parallel to scene_.materials
+  std::vector<TriangleAttributes> attributes_;       // parallel to scene_.triangles once needed
+  bool attributes_on_ = false;                       // a triangle has needed them
 };
 
 // The roots of the default scene (scene 0 when none is named; every root node when

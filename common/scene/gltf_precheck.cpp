@@ -1,7 +1,8 @@
 // The checks of a glTF 2.0 file before tinygltf reads it, for the loader of the contract
-// (README.md) "Scenes": the file itself, the GLB container, the JSON's integers and
-// nesting, buffer and image URIs, and the bufferViews of images (offsets near 2^64
-// included: sizes are added with overflow checks).
+// (README.md) "Scenes": the file itself (a Git LFS pointer is named as one), the GLB
+// container, the JSON's integers and nesting, extensionsRequired (before tinygltf reads
+// buffers an extension may have compressed), buffer and image URIs, and the bufferViews of
+// images (offsets near 2^64 included: sizes are added with overflow checks).
 #include <cctype>
 #include <cerrno>
 #include <climits>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -28,6 +30,59 @@ namespace fs = std::filesystem;
 
 constexpr int kMaxJsonDepth = 64;  // real files nest about 8 levels
 const std::set<std::string> kSizeKeys = {"byteOffset", "byteLength", "byteStride", "count"};
+constexpr char kLfsPointer[] = "version https://git-lfs.github.com/spec/v1";
+const std::string kLfsAdvice = "run `git lfs pull` in its repository (or download the real file)";
+
+// A clone without `git lfs pull` holds small text files in place of the real ones.
+bool is_lfs_pointer(const unsigned char* bytes, std::size_t size) {
+  const std::size_t n = sizeof kLfsPointer - 1;
+  return size >= n && std::memcmp(bytes, kLfsPointer, n) == 0;
+}
+
+bool file_is_lfs_pointer(const fs::path& path) {
+  unsigned char head[sizeof kLfsPointer - 1];
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  return in && is_lfs_pointer(head, sizeof head);
+}
+
+// The extensions that change what buffers or images hold, and the way out of each.
+const std::map<std::string, std::string> kUnreadExtensions = {
+    {"KHR_draco_mesh_compression",
+     "(Draco-compressed meshes), which this renderer does not read: re-export without compression "
+     "(Blender: uncheck Compression in the glTF exporter) or decompress it with "
+     "`gltf-transform copy IN OUT`"},
+    {"EXT_meshopt_compression",
+     "(meshoptimizer-compressed buffers), which this renderer does not read: re-export without "
+     "compression or decompress it with `gltfpack -noq -i IN -o OUT` (gltfpack 0.21 or later)"},
+    {"KHR_mesh_quantization",
+     "(vertex attributes stored as 8- or 16-bit integers), which this renderer does not read: "
+     "re-export without quantization or dequantize it with `gltf-transform dequantize IN OUT`"},
+    {"KHR_texture_basisu",
+     "(KTX2 / Basis Universal textures), which this renderer does not read: re-export with PNG or "
+     "JPEG textures"},
+    {"EXT_texture_webp",
+     "(WebP textures), which this renderer does not read: re-export with PNG or JPEG textures "
+     "(Blender: Images Automatic or JPEG in the glTF exporter)"},
+};
+
+// Checked before anything else in the JSON: a compressed file's accessors may have no
+// data at all, and tinygltf would only call it malformed.
+void check_required_extensions(const Json& doc, const std::string& file) {
+  auto required = doc.find("extensionsRequired");
+  if (required == doc.end() || !required->is_array()) return;  // tinygltf says
+  for (const Json& entry : *required) {
+    if (!entry.is_string()) continue;
+    std::string name = entry.get<std::string>();
+    if (kSupportedExtensions.count(name)) continue;
+    auto known = kUnreadExtensions.find(name);
+    if (known != kUnreadExtensions.end())
+      fail(file, "extensionsRequired lists " + name + " " + known->second);
+    fail(file, "extensionsRequired lists " + name.substr(0, 80) +
+                   ", which this renderer does not support: re-export without it (supported: " +
+                   supported_extensions_text() + ")");
+  }
+}
 
 std::vector<unsigned char> read_file(const std::string& path) {
   std::error_code ec;
@@ -59,7 +114,8 @@ std::vector<unsigned char> read_file(const std::string& path) {
   in.seekg(0, std::ios::beg);
   std::vector<unsigned char> bytes(size > 0 ? std::size_t(size) : 0);
   if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) {
-    throw Error(kExitBadScene, "cannot read scene '" + path + "': " + std::strerror(errno) + "; check the file");
+    throw Error(kExitBadScene,
+                "cannot read scene '" + path + "': " + std::strerror(errno) + "; check the file");
   }
   return bytes;
 }
@@ -157,7 +213,8 @@ bool leaves_folder(const std::string& path) {
   return false;
 }
 
-// Buffer and image URIs stay inside the scene's folder; external buffers must exist.
+// Buffer and image URIs stay inside the scene's folder; external buffers must exist and
+// hold data, not a Git LFS pointer.
 void check_uris(const Json& doc, const std::string& base_dir, const std::string& file) {
   for (const char* array : {"buffers", "images"}) {
     auto items = doc.find(array);
@@ -174,11 +231,41 @@ void check_uris(const Json& doc, const std::string& base_dir, const std::string&
                        "' points outside the scene's folder: keep buffers and images next to "
                        "the .gltf (or embed them) and re-export");
       }
+      if (std::string(array) != "buffers") continue;
       std::error_code ec;
-      if (std::string(array) == "buffers" && !fs::is_regular_file(fs::path(base_dir) / decoded, ec)) {
+      fs::path path = fs::path(base_dir) / decoded;
+      if (!fs::is_regular_file(path, ec)) {
         fail(file, where + " '" + uri.substr(0, 80) +
                        "' was not found next to the scene: copy it there or re-export as .glb");
       }
+      if (file_is_lfs_pointer(path)) {
+        fail(file, where + " '" + uri.substr(0, 80) +
+                       "' is a Git LFS pointer, not the buffer itself: " + kLfsAdvice);
+      }
+    }
+  }
+}
+
+void check_int_size(const Json& object, const char* key, const std::string& where, const std::string& file) {
+  auto value = object.find(key);
+  if (value != object.end() && value->is_number_unsigned() && value->get<std::uint64_t>() > INT_MAX) {
+    fail(file, where + "." + key + " = " + value->dump() + " is out of range: " + kReexport);
+  }
+}
+
+// tinygltf reads a sparse accessor's count and byteOffsets into an int: larger ones would wrap.
+void check_sparse_sizes(const Json& doc, const std::string& file) {
+  auto accessors = doc.find("accessors");
+  if (accessors == doc.end() || !accessors->is_array()) return;
+  for (std::size_t i = 0; i < accessors->size(); ++i) {
+    auto sparse = (*accessors)[i].find("sparse");
+    if (sparse == (*accessors)[i].end() || !sparse->is_object()) continue;
+    std::string where = "accessors[" + str(i) + "].sparse";
+    check_int_size(*sparse, "count", where, file);
+    for (const char* part : {"indices", "values"}) {
+      auto array = sparse->find(part);
+      if (array != sparse->end() && array->is_object())
+        check_int_size(*array, "byteOffset", where + "." + part, file);
     }
   }
 }
@@ -229,6 +316,9 @@ SourceFile read_and_precheck(const std::string& path) {
   SourceFile source;
   source.binary = ext == ".glb";
   source.bytes = read_file(path);
+  if (is_lfs_pointer(source.bytes.data(), source.bytes.size())) {
+    fail(path, "is a Git LFS pointer, not the glTF file itself: " + kLfsAdvice);
+  }
   source.base_dir = fs::path(path).parent_path().string();
   std::string text =
       source.binary ? glb_json(source.bytes, path) : std::string(source.bytes.begin(), source.bytes.end());
@@ -241,7 +331,9 @@ SourceFile read_and_precheck(const std::string& path) {
     fail(path, "invalid JSON (" + what + "): the file is damaged or not glTF; re-export it");
   }
   if (!doc.is_object()) fail(path, "invalid JSON for glTF: the top level is not an object; re-export it");
+  check_required_extensions(doc, path);
   check_numbers(doc, "", 0, false, path);
+  check_sparse_sizes(doc, path);
   check_uris(doc, source.base_dir, path);
   check_image_views(doc, path);
   return source;

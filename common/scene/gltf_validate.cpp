@@ -1,5 +1,5 @@
 // Checks of a glTF 2.0 file that tinygltf leaves to its user, for the loader of
-// the contract (README.md) "Scenes": after tinygltf has read it, the extensions, every
+// the contract (README.md) "Scenes": after tinygltf has read it, the extensions used, every
 // reference between arrays and the node tree; and the one-line failure every check ends in.
 // The file before tinygltf: gltf_precheck.cpp; the accessors a triangle reads: gltf_accessors.cpp.
 #include "common/scene/gltf_validate.h"
@@ -17,19 +17,10 @@ using namespace detail;
 
 namespace {
 
-const std::set<std::string> kSupportedExtensions = {"KHR_materials_emissive_strength",
-                                                    "KHR_materials_transmission", "KHR_materials_ior",
-                                                    "KHR_lights_punctual"};
-
-void check_extensions(const tinygltf::Model& model, const std::string& file) {
-  for (const std::string& name : model.extensionsRequired) {
-    if (!kSupportedExtensions.count(name)) {
-      fail(file, "extensionsRequired lists " + name +
-                     ", which this renderer does not support: re-export without it (supported: "
-                     "KHR_materials_emissive_strength, KHR_materials_transmission, "
-                     "KHR_materials_ior, KHR_lights_punctual)");
-    }
-  }
+// extensionsRequired is checked before tinygltf runs (gltf_precheck.cpp): an extension
+// such as Draco changes what the buffers hold. What remains is to name, once, the
+// extensions a file uses that are not modelled.
+void warn_unsupported_extensions(const tinygltf::Model& model, const std::string& file) {
   std::string ignored;
   for (const std::string& name : model.extensionsUsed) {
     if (!kSupportedExtensions.count(name)) ignored += (ignored.empty() ? "" : ", ") + name;
@@ -141,7 +132,7 @@ float checked_float(const std::string& file, double value, const std::string& wh
 }
 
 std::vector<int> check_model(const tinygltf::Model& model, const std::string& file) {
-  check_extensions(model, file);
+  warn_unsupported_extensions(model, file);
   if (model.defaultScene != -1) check_index(file, model.defaultScene, model.scenes.size(), "scene", "scenes");
   for (std::size_t i = 0; i < model.nodes.size(); ++i) check_node(model, i, file);
   for (std::size_t m = 0; m < model.meshes.size(); ++m) {

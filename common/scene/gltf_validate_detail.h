@@ -1,15 +1,29 @@
 // Helpers shared by the glTF checks (gltf_precheck.cpp, gltf_validate.cpp and
-// gltf_accessors.cpp): numbers and byte counts in messages, little-endian reads, and the
-// range check of an index into one of the file's arrays.
+// gltf_accessors.cpp): the extensions the renderer reads, numbers and byte counts in
+// messages, little-endian reads, and the range check of an index into one of the file's arrays.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <set>
 #include <string>
 
 #include "common/scene/gltf_validate.h"
 
 namespace pt::gltf::detail {
+
+// The extensions this renderer reads: the one list. gltf_precheck.cpp refuses any other in
+// extensionsRequired; gltf_validate.cpp names the others in extensionsUsed once.
+inline const std::set<std::string> kSupportedExtensions = {"KHR_materials_emissive_strength",
+                                                           "KHR_materials_transmission", "KHR_materials_ior",
+                                                           "KHR_lights_punctual", "KHR_texture_transform"};
+
+// "A, B, C" for messages.
+inline std::string supported_extensions_text() {
+  std::string text;
+  for (const std::string& name : kSupportedExtensions) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
 
 inline std::string str(std::uint64_t n) { return std::to_string(n); }
 

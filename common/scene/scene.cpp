@@ -6,6 +6,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "common/base/error.h"
+
 namespace pt {
 
 Bounds Scene::bounds() const {
@@ -22,11 +24,13 @@ Bounds Scene::bounds() const {
 
 uint Scene::add_material(const Material& m) {
   materials.push_back(m);
+  if (!material_textures.empty()) material_textures.push_back(no_material_textures());
   return uint(materials.size() - 1);
 }
 
 void Scene::add_triangle(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, uint material) {
   triangles.push_back(Triangle{p0, material, p1, kNoLight, p2, 0u});
+  if (!triangle_attributes.empty()) triangle_attributes.push_back(no_triangle_attributes());
 }
 
 void Scene::add_sphere(glm::vec3 center, float radius, uint material) {
@@ -155,11 +159,42 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
 
 namespace {
 float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// The sRGB EOTF (IEC 61966-2-1), as texture.glsl decodes base colour and emissive texels.
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// The mean linear RGB of a texture whose texels are sRGB: the emissive texture's share of a
+// light's power (what the texture averages to where its uv cover it evenly).
+glm::dvec3 srgb_texture_mean(const Scene& scene, uint index) {
+  const Texture& t = scene.textures[index];
+  double lut[256];
+  for (int i = 0; i < 256; i++) lut[i] = srgb_to_linear(i / 255.0);
+  glm::dvec3 sum(0.0);
+  const std::size_t n = std::size_t(t.width) * t.height;
+  for (std::size_t i = 0; i < n; i++) {
+    uint v = scene.texels[t.offset + i];
+    sum += glm::dvec3(lut[v & 255u], lut[v >> 8 & 255u], lut[v >> 16 & 255u]);
+  }
+  return n ? sum / double(n) : glm::dvec3(0.0);
+}
+
+// The emission a triangle light's power counts: the material's, times the mean of its
+// emissive texture (texture.glsl multiplies the two at every point).
+glm::vec3 mean_emission(const Scene& scene, uint material, std::vector<std::optional<glm::dvec3>>& means) {
+  glm::vec3 e = scene.materials[material].emission;
+  if (!uses_textures(scene)) return e;
+  uint tex = scene.material_textures[material].emissive;
+  if (tex == kNoTexture) return e;
+  if (means.size() < scene.textures.size()) means.resize(scene.textures.size());
+  if (!means[tex]) means[tex] = srgb_texture_mean(scene, tex);
+  return glm::vec3(glm::dvec3(e) * *means[tex]);
+}
 }  // namespace
 
 void build_light_table(Scene& scene) {
   scene.lights.clear();
   std::vector<double> power;
+  std::vector<std::optional<glm::dvec3>> texture_means;  // of the emissive textures met
   for (std::size_t i = 0; i < scene.triangles.size(); i++) {
     Triangle& t = scene.triangles[i];
     const Material& m = scene.materials[t.material];
@@ -168,7 +203,7 @@ void build_light_table(Scene& scene) {
     double sides = m.double_sided != 0u ? 2.0 : 1.0;
     t.light = uint(scene.lights.size());
     scene.lights.push_back(Light{kLightTriangle, uint(i), 0.0f, 0.0f});
-    power.push_back(M_PI * area * sides * luminance(m.emission));
+    power.push_back(M_PI * area * sides * luminance(mean_emission(scene, t.material, texture_means)));
   }
   for (std::size_t i = 0; i < scene.spheres.size(); i++) {
     Sphere& s = scene.spheres[i];
@@ -213,6 +248,7 @@ float sky_pick_probability(const Scene& scene, glm::vec3 sky) {
 
 uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
   uint mask = 0u;
+  std::vector<char> tex_seen;  // the textured materials already counted
   if (!scene.triangles.empty()) mask |= kFeatureTriangles;
   if (!scene.spheres.empty()) mask |= kFeatureSpheres;
   auto add_material = [&](const Material& m) {
@@ -227,8 +263,31 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
         mask |= kFeatureMixed | kFeatureDiffuse | (m.alpha >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror);
     }
   };
-  for (const Triangle& t : scene.triangles) add_material(scene.materials[t.material]);
+  // A metallic-roughness texture makes metallic and roughness vary over the surface
+  // (texture.glsl: surface_material): every kind the range of its texels reaches counts.
+  auto add_textured = [&](uint index) {
+    const Material& m = scene.materials[index];
+    uint tex = uses_textures(scene) ? scene.material_textures[index].metallic_roughness : kNoTexture;
+    if (tex == kNoTexture || m.kind == kMaterialGlass) return add_material(m);
+    if (tex_seen.size() < scene.materials.size()) tex_seen.resize(scene.materials.size(), 0);
+    if (tex_seen[index]) return;
+    tex_seen[index] = 1;
+    const MaterialTextures& mt = scene.material_textures[index];
+    const Texture& t = scene.textures[tex];
+    auto channel = [](uint packed, int c) { return float(packed >> (8 * c) & 255u) / 255.0f; };
+    float m_lo = mt.metallic_factor * channel(t.texel_min, 2), m_hi = mt.metallic_factor * channel(t.texel_max, 2);
+    float r_lo = mt.roughness_factor * channel(t.texel_min, 1), r_hi = mt.roughness_factor * channel(t.texel_max, 1);
+    // Between the extremes every value is reached (bilinear filtering): one in between too.
+    float m_mid = 0.5f * (std::max(m_lo, 0.0f) + std::min(m_hi, 1.0f));
+    for (float metallic : {m_lo, m_mid, m_hi}) {
+      for (float roughness : {r_lo, r_hi}) {
+        add_material(make_gltf_material(m.base_color, metallic, roughness, 0.0f, m.ior, m.emission, false));
+      }
+    }
+  };
+  for (const Triangle& t : scene.triangles) add_textured(t.material);
   for (const Sphere& s : scene.spheres) add_material(scene.materials[s.material]);
+  if (uses_textures(scene)) mask |= kFeatureTextures;
   for (const Light& l : scene.lights) {
     if (l.kind == kLightTriangle) mask |= kFeatureTriangleLights;
     if (l.kind == kLightSphere) mask |= kFeatureSphereLights;
@@ -243,10 +302,10 @@ std::string feature_names(uint mask) {
     uint bit;
     const char* name;
   };
-  const Name groups[3][5] = {
+  const Name groups[3][6] = {
       {{kFeatureTriangles, "triangles"}, {kFeatureSpheres, "spheres"}},
       {{kFeatureDiffuse, "diffuse"}, {kFeatureMirror, "mirror"}, {kFeatureConductor, "GGX conductor"},
-       {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}},
+       {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureTextures, "textures"}},
       {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
        {kFeaturePointLights, "point lights"}, {kFeatureSky, "sky"}}};
   std::string s;
@@ -268,20 +327,87 @@ bool is_emissive(const Material& m) {
   return m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f;
 }
 
-Camera make_camera(const Scene& scene, float aspect) {
-  CameraDesc desc;
-  if (scene.camera) {
-    desc = *scene.camera;
-  } else {
-    // Frame the bounding sphere from +Z with the default field of view.
-    Bounds b = scene.bounds();
-    glm::vec3 center = b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
-    float radius = b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-6f);
-    float half = 0.5f * desc.yfov * glm::min(aspect, 1.0f);
-    float distance = radius / std::sin(half);
-    desc.to_world = glm::mat4(1.0f);
-    desc.to_world[3] = glm::vec4(center + glm::vec3(0.0f, 0.0f, distance), 1.0f);
+bool uses_textures(const Scene& scene) {
+  return !scene.material_textures.empty() && !scene.triangle_attributes.empty();
+}
+
+MaterialTextures no_material_textures() {
+  const glm::vec3 s(1.0f, 0.0f, 0.0f), t(0.0f, 1.0f, 0.0f);  // the identity transform
+  return MaterialTextures{s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1u};
+}
+
+std::vector<MaterialTextures> neutral_material_textures(std::size_t materials) {
+  MaterialTextures none = no_material_textures();
+  none.enabled = 0u;
+  return std::vector<MaterialTextures>(std::max<std::size_t>(materials, 1), none);
+}
+
+TriangleAttributes no_triangle_attributes() {
+  const glm::vec2 uv(0.0f);
+  const glm::vec4 white(1.0f);
+  return TriangleAttributes{uv, uv, uv, uv, white, white, white};
+}
+
+glm::vec4 texel_value(const Scene& scene, const Texture& t, uint x, uint y) {
+  uint v = scene.texels[t.offset + std::size_t(y) * t.width + x];
+  return glm::vec4(float(v & 255u), float(v >> 8 & 255u), float(v >> 16 & 255u), float(v >> 24)) / 255.0f;
+}
+
+CameraDesc frame_bounds(const Bounds& bounds, float aspect) {
+  CameraDesc desc;  // perspective, the default yfov
+  Bounds b = bounds;
+  if (b.empty()) b.lo = glm::vec3(-1.0f), b.hi = glm::vec3(1.0f);
+  const double azimuth = M_PI / 4.0, elevation = M_PI / 6.0;
+  // The camera's frame: it looks along -back, towards the centre, with image up near +Y.
+  const glm::dvec3 back(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                        std::cos(azimuth) * std::cos(elevation));
+  const glm::dvec3 right = glm::normalize(glm::cross(glm::dvec3(0.0, 1.0, 0.0), back));
+  const glm::dvec3 up = glm::cross(back, right);
+  const glm::dvec3 center = 0.5 * (glm::dvec3(b.lo) + glm::dvec3(b.hi));
+  // A corner at (x, y) across and z towards the camera from the centre, seen from distance
+  // D along `back`, is in the picture when |x| <= tx (D - z) and |y| <= ty (D - z).
+  const double ty = std::tan(0.5 * double(desc.yfov)), tx = ty * double(aspect);
+  const double margin = 1.05;
+  double distance = 0.0, depth = 0.0;
+  for (int corner = 0; corner < 8; corner++) {
+    glm::dvec3 p((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y, (corner & 4) ? b.hi.z : b.lo.z);
+    glm::dvec3 o = p - center;
+    double z = glm::dot(o, back);
+    distance = std::max({distance, margin * std::abs(glm::dot(o, right)) / tx + z,
+                         margin * std::abs(glm::dot(o, up)) / ty + z});
+    depth = std::max(depth, z);
   }
+  // The nearest corner stays in front of the camera (a flat scene seen edge-on has none).
+  distance = std::max({distance, depth * 1.01, 1e-6 * std::max(1.0, glm::length(center))});
+  glm::dmat4 to_world(1.0);
+  to_world[0] = glm::dvec4(right, 0.0), to_world[1] = glm::dvec4(up, 0.0), to_world[2] = glm::dvec4(back, 0.0);
+  to_world[3] = glm::dvec4(center + distance * back, 1.0);
+  desc.to_world = glm::mat4(to_world);
+  return desc;
+}
+
+void select_camera(Scene& scene, const std::string& request) {
+  std::string there;  // the cameras there are, for the message
+  for (const SceneCamera& c : scene.cameras) {
+    bool by_index = !request.empty() && request.find_first_not_of("0123456789") == std::string::npos &&
+                    request.size() < 10 && std::stoi(request) == c.index;
+    if (by_index || (!c.name.empty() && c.name == request) || c.node == request) {
+      scene.camera = c.desc;
+      return;
+    }
+    there += (there.empty() ? "" : ", ") + std::to_string(c.index) + (c.name.empty() ? "" : " '" + c.name + "'") +
+             " (node '" + c.node + "')";
+  }
+  if (scene.cameras.empty()) {
+    throw Error(kExitBadOption, "--camera " + request + ": " + scene.name +
+                                    " has no cameras of its own to choose from; leave --camera out");
+  }
+  throw Error(kExitBadOption, "--camera " + request + ": " + scene.name + " has no such camera; its cameras: " +
+                                  there + " (give the index or a name)");
+}
+
+Camera make_camera(const Scene& scene, float aspect) {
+  CameraDesc desc = scene.camera ? *scene.camera : frame_bounds(scene.bounds(), aspect);
   glm::vec3 origin(desc.to_world[3]);
   glm::vec3 forward = glm::normalize(-glm::vec3(desc.to_world[2]));
   glm::vec3 up0 = glm::vec3(desc.to_world[1]);

@@ -19,6 +19,15 @@ struct CameraDesc {
   glm::mat4 to_world{1.0f};        // the camera node's world transform (looks down -Z)
   float yfov = 0.6911f;            // perspective: vertical field of view, radians
   float xmag = 1.0f, ymag = 1.0f;  // orthographic: half-extents of the view
+  float aspect_ratio = 0.0f;       // perspective: the file's aspectRatio (width / height), 0 when not given
+};
+
+// One of a glTF file's cameras as the default scene places it (--camera N|NAME picks one).
+struct SceneCamera {
+  CameraDesc desc;
+  int index = -1;    // the file's cameras[] index
+  std::string name;  // the camera's name ("" when it has none)
+  std::string node;  // the name of the node that places it, else "nodes[i]"
 };
 
 struct Bounds {
@@ -36,11 +45,20 @@ struct Scene {
   std::vector<Light> lights;             // the light table: build_light_table()
   double light_power = 0.0;              // the table's total power (luminance), same place
   std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
+  std::vector<SceneCamera> cameras;      // a glTF file's cameras in the order met; camera is
+                                         // the first until select_camera picks another
   int degenerate_triangles = 0;          // skipped at load (zero area or not finite)
   std::optional<Bounds> region;          // where the scene's content is, when its shapes'
                                          // bounds overstate it (smallpt's walls are spheres
                                          // of radius 1e5): bounds() returns it, so the
                                          // spawn offset and framing use the room's size
+  // Textures and vertex colours (common/kernel/texture.glsl): both arrays empty, or
+  // material_textures parallel to materials and triangle_attributes to triangles
+  // (uses_textures(); add_material and add_triangle keep them parallel).
+  std::vector<MaterialTextures> material_textures;
+  std::vector<TriangleAttributes> triangle_attributes;
+  std::vector<Texture> textures;  // the texture table
+  std::vector<uint> texels;       // every texture's texels, 8-bit RGBA packed in a uint
 
   Bounds bounds() const;  // `region` when set, else the shapes' bounds
   // Appends a material and returns its index.
@@ -75,8 +93,19 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
                             float ior, glm::vec3 emission, bool double_sided);
 
 // The kernel camera for an image of the given aspect (width / height). With no camera in
-// the scene, a perspective camera on +Z frames the bounding box.
+// the scene, frame_bounds places one.
 Camera make_camera(const Scene& scene, float aspect);
+
+// The camera a model viewer would place: a perspective camera with the default field of
+// view, raised above the bounds' centre and turned 45 degrees about +Y (a three-quarter
+// view from +X+Z, looking down at 30 degrees, image up +Y), as close as it can be with
+// every corner of the bounds inside the image of the given aspect (with a 5% margin).
+CameraDesc frame_bounds(const Bounds& bounds, float aspect);
+
+// --camera N|NAME: makes the file's camera with index N (cameras[N]), or the one whose own
+// name or node name is NAME, the scene's camera. Throws pt::Error(2) naming the cameras
+// there are when none matches.
+void select_camera(Scene& scene, const std::string& request);
 
 // Fills scene.lights with every emissive triangle and sphere and every point light, each
 // with the probability of being picked in proportion to its power (stage4), and sets
@@ -96,5 +125,18 @@ std::string scene_features(const Scene& scene, glm::vec3 sky);  // both of the a
 
 // Whether the material emits light (any emission component above zero).
 bool is_emissive(const Material& m);
+
+// Whether the scene has textures or vertex colours (kFeatureTextures): its
+// material_textures and triangle_attributes are filled.
+bool uses_textures(const Scene& scene);
+// The textures of a material that has none: every slot kNoTexture, identity transforms.
+MaterialTextures no_material_textures();
+// What a backend binds as material_textures[] for a scene without textures whose kernel
+// has texture code (a CPU variant, --all-features): entries that read nothing (enabled 0).
+std::vector<MaterialTextures> neutral_material_textures(std::size_t materials);
+// The attributes of a triangle without TEXCOORD_0 or COLOR_0: uv (0, 0), colour 1.
+TriangleAttributes no_triangle_attributes();
+// Texel (x, y) of texture t, each channel in [0, 1] (as stored: sRGB channels not decoded).
+glm::vec4 texel_value(const Scene& scene, const Texture& t, uint x, uint y);
 
 }  // namespace pt

@@ -70,6 +70,7 @@ PT_DOUBLE_PRELUDE
 #undef PT_CAMERA_GLSL
 #undef PT_FEATURES_GLSL
 #undef PT_INTERSECT_GLSL
+#undef PT_TEXTURE_GLSL
 #undef PT_BVH_GLSL
 #undef PT_LIGHTS_GLSL
 #undef PT_RENDER_PIXEL_GLSL
@@ -105,6 +106,8 @@ using namespace pt::test;
     ns::materials = scene.materials.data();                                                    \
     ns::point_lights = scene.point_lights.data();                                              \
     ns::lights = scene.lights.data();                                                          \
+    std::vector<MaterialTextures> neutral = neutral_material_textures(scene.materials.size());  \
+    ns::material_textures = neutral.data(); /* the scenes have no textures (texture.glsl) */    \
     ns::counters = counters;                                                                   \
     ns::params = make_frame_params(scene, s);                                                  \
     ns::params.sample_count = uint(s.spp);                                                     \

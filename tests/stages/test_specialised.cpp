@@ -14,6 +14,7 @@
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
+#include "tests/support/image_checks.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
@@ -35,6 +36,7 @@ const Case kCases[] = {
     {"builtin:point_in_sphere", glm::vec3(0.0f)},
     {PT_SOURCE_DIR "/scenes/glossy_glass.gltf", glm::vec3(0.2f)},
     {"mixed", glm::vec3(0.0f)},  // the Cornell box with mixed materials, below
+    {PT_SOURCE_DIR "/tests/data/gltf/tex_seed.glb", glm::vec3(0.3f)},  // textures, vertex colours
 };
 
 Scene load_case(const Case& c) {
@@ -47,25 +49,6 @@ Scene load_case(const Case& c) {
   std::size_t n = scene.triangles.size();
   for (std::size_t i = n - 24; i < n; i++) scene.triangles[i].material = i < n - 12 ? rough : smooth;
   return scene;
-}
-
-// Distance in units in the last place between two finite floats of the same sign.
-std::uint32_t ulps(float a, float b) {
-  std::int32_t ia, ib;
-  std::memcpy(&ia, &a, sizeof a);
-  std::memcpy(&ib, &b, sizeof b);
-  return ia > ib ? std::uint32_t(ia - ib) : std::uint32_t(ib - ia);
-}
-
-// The largest difference, in ulps, between two images' values (reported when not 0).
-std::uint32_t max_ulps(const std::vector<float>& a, const std::vector<float>& b) {
-  std::uint32_t worst = 0;
-  for (std::size_t i = 0; i < a.size(); i++) {
-    std::uint32_t d = ulps(a[i], b[i]);
-    if (d != 0) UNSCOPED_INFO("value " << i << ": " << a[i] << " vs " << b[i] << ", " << d << " ulps");
-    worst = std::max(worst, d);
-  }
-  return worst;
 }
 
 }  // namespace
@@ -88,7 +71,7 @@ TEST_CASE("specialised and general kernels give identical images", "[features]")
       // other (GLSL allows it): a few values then differ in the last bit or two. A path
       // that went another way (a changed decision) would differ by far more.
       std::uint32_t allowed = test::backend_under_test == "cpu" ? 0u : 4u;
-      CHECK(max_ulps(specialised, general) <= allowed);
+      CHECK(pt::test::max_ulps(specialised, general) <= allowed);
     }
   }
   CHECK(all_features_seen == kFeatureAll);  // the cases cover every feature

@@ -45,6 +45,13 @@ inline Run run_program(const std::string& program, const std::string& args, cons
   return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stderr"), read_file(dir / "stdout")};
 }
 
+// How many times `word` occurs in `text` (overlapping occurrences counted).
+inline int occurrences(const std::string& text, const std::string& word) {
+  int n = 0;
+  for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+  return n;
+}
+
 inline int lines(const std::string& s) {
   int n = 0;
   for (char c : s) n += c == '\n';

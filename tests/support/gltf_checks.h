@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <functional>
 #include <initializer_list>
 #include <string>
 
@@ -42,12 +43,12 @@ inline const pt::Material& material_at(const pt::Scene& scene, float x) {
   throw 0;
 }
 
-// The loader's failure on a fixture: the exit code and one-line message it carries.
-inline void require_bad_scene(const std::string& path, std::initializer_list<const char*> words) {
+// A reader's refusal: exit code 3 and one line that contains each word.
+inline void require_refusal(const std::function<void()>& read, std::initializer_list<const char*> words) {
   int code = 0;
   std::string message;
   try {
-    pt::load_gltf(path);
+    read();
   } catch (const pt::Error& e) {
     code = e.code();
     message = e.what();
@@ -56,6 +57,11 @@ inline void require_bad_scene(const std::string& path, std::initializer_list<con
   REQUIRE(code == pt::kExitBadScene);
   CHECK(message.find('\n') == std::string::npos);
   for (const char* word : words) CHECK_THAT(message, Catch::Contains(word));
+}
+
+// The loader's failure on a fixture: the exit code and one-line message it carries.
+inline void require_bad_scene(const std::string& path, std::initializer_list<const char*> words) {
+  require_refusal([&] { pt::load_gltf(path); }, words);
 }
 
 }  // namespace pt::test

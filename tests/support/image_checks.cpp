@@ -3,7 +3,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 
 #include "tests/support/statistics.h"
@@ -137,6 +139,23 @@ ExpectedImage expected_image(int width, int height,
     }
   }
   return image;
+}
+
+std::uint32_t ulps(float a, float b) {
+  std::int32_t ia, ib;
+  std::memcpy(&ia, &a, sizeof a);
+  std::memcpy(&ib, &b, sizeof b);
+  return ia > ib ? std::uint32_t(ia - ib) : std::uint32_t(ib - ia);
+}
+
+std::uint32_t max_ulps(const std::vector<float>& a, const std::vector<float>& b) {
+  std::uint32_t worst = 0;
+  for (std::size_t i = 0; i < a.size(); i++) {
+    std::uint32_t d = ulps(a[i], b[i]);
+    if (d != 0) UNSCOPED_INFO("value " << i << ": " << a[i] << " vs " << b[i] << ", " << d << " ulps");
+    worst = std::max(worst, d);
+  }
+  return worst;
 }
 
 }  // namespace pt::test

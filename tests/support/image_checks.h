@@ -4,6 +4,7 @@
 // a t-test over independent batches.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -56,5 +57,10 @@ ExpectedImage expected_image(int width, int height,
 
 // Student's t quantile: P(|T| > t) = alpha for dof degrees of freedom.
 double student_two_sided_quantile(double alpha, int dof);
+
+// Distance in units in the last place between two finite floats of the same sign, and the
+// largest such distance between two images' values (each value that differs is reported).
+std::uint32_t ulps(float a, float b);
+std::uint32_t max_ulps(const std::vector<float>& a, const std::vector<float>& b);
 
 }  // namespace pt::test

@@ -4,6 +4,14 @@
 // the test's own kernel namespace, after the kernel code; no include guard, since each test
 // file's namespace gets its own copy.
 inline void bind_scene(const ::pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
+  // Textures (common/kernel/texture.glsl): the scene's, or neutral material entries.
+  static thread_local std::vector<::pt::MaterialTextures> neutral;
+  neutral = ::pt::neutral_material_textures(s.materials.size());
+  const bool textured = ::pt::uses_textures(s);
+  triangle_attributes = textured ? s.triangle_attributes.data() : nullptr;
+  material_textures = textured ? s.material_textures.data() : neutral.data();
+  textures = textured ? s.textures.data() : nullptr;
+  texels = textured ? s.texels.data() : nullptr;
   triangles = s.triangles.data();
   spheres = s.spheres.data();
   materials = s.materials.data();

@@ -7,7 +7,7 @@
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
 
-vec3 Li(Ray ray) {
+vec3 Li(Ray) {  // the camera ray is not needed: the probe returns its sampler's values
   float a = sample_1d();
   vec2 b = sample_2d();
   return vec3(a, b.x, b.y);

@@ -229,7 +229,7 @@ TEST_CASE("sampler: a block's odd slot and its four numbers together are nets as
   for (int m : {6, 8}) {
     std::vector<std::vector<uint>> random_points;
     for (int i = 0; i < (1 << m); i++) {
-      random_points.push_back({rng() >> (32 - m), rng() >> (32 - m), rng() >> (32 - m), rng() >> (32 - m)});
+      random_points.push_back({uint(rng() >> (32 - m)), uint(rng() >> (32 - m)), uint(rng() >> (32 - m)), uint(rng() >> (32 - m))});
     }
     CHECK(net_t_value(random_points, m, 4) > net_t_value(sobol_bits(m, {0, 1, 2, 3}), m, 4));
   }

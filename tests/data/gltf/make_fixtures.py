@@ -7,9 +7,9 @@ import sys
 
 sys.dont_write_bytecode = True  # leave no __pycache__ among the fixtures
 
-from malformed_fixtures import broken  # noqa: E402
-from valid_fixtures import (blender_like, cameras, glb, index_types, interleaved, layouts,  # noqa: E402
-                            lights, materials, transforms)
+from malformed_fixtures import broken, broken_sparse, lfs_pointers, required_extensions  # noqa: E402
+from valid_fixtures import (attributes, blender_like, cameras, glb, index_types, interleaved,  # noqa: E402
+                            layouts, lights, materials, sparse, textures, transforms)
 
 
 if __name__ == "__main__":
@@ -22,4 +22,10 @@ if __name__ == "__main__":
     glb()
     blender_like()
     layouts()
+    sparse()
+    attributes()
+    textures()
     broken()
+    broken_sparse()
+    required_extensions()
+    lfs_pointers()

@@ -1,6 +1,7 @@
 # The valid glTF fixtures of make_fixtures.py: small files, each showing one rule of the
 # loader (the contract (README.md) "Scenes"): transforms, index types, layouts, cameras,
-# materials, point lights, a .glb and a Blender-like file with what is not modelled.
+# materials, point lights, a .glb, a Blender-like file with what is not modelled, sparse
+# accessors, and texture coordinates and colours of each component type.
 import base64
 import math
 import struct
@@ -120,8 +121,7 @@ def glb():
     g = one_triangle([(0, 0, 1), (1, 0, 1), (0, 1, 1)])
     g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}]
     g.node(translation=[0, 0, 5], camera=0)
-    fake_png = b"\x89PNG\r\n\x1a\n" + b"\0" * 8  # never decoded
-    g.doc["images"] = [{"bufferView": g.view(fake_png), "mimeType": "image/png"}]
+    g.doc["images"] = [{"bufferView": g.view(CHECKER_2X2), "mimeType": "image/png"}]  # decoded by OpenImageIO
     g.doc["textures"] = [{"source": 0}]
     g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}]
     g.doc["meshes"][0]["primitives"][0]["material"] = 0
@@ -139,10 +139,10 @@ def blender_like():
         {"attributes": {"POSITION": tri}, "mode": 4, "material": 0, "targets": [{"POSITION": morph}]},
         {"attributes": {"POSITION": line}, "mode": 1}], "weights": [0.0]})
     g.doc["materials"] = [{"name": "Material", "pbrMetallicRoughness": {
-        "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}},
-        "metallicFactor": 0, "roughnessFactor": 0.5}}]
-    g.doc["images"] = [{"uri": "textures/not_there.png"},
-                       {"uri": "data:image/png;base64," + base64.b64encode(b"\x89PNG\r\n\x1a\n").decode()}]
+        "baseColorTexture": {"index": 1, "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}},
+        "metallicFactor": 0, "roughnessFactor": 0.5}, "normalTexture": {"index": 0}}]
+    # the normal texture's image is missing: normal textures are not modelled, so never read
+    g.doc["images"] = [{"uri": "textures/not_there.png"}, {"uri": data_uri(CHECKER_2X2)}]
     g.doc["textures"] = [{"source": 0}, {"source": 1}]
     joint = g.node(root=False, translation=[0, 1, 0])
     g.node(name="Armature", children=[joint])
@@ -178,3 +178,243 @@ def layouts():
     g.node(mesh=g.mesh(TRIANGLE + [(0, 0, 0), (1, 1, 1), (2, 2, 2)] + [(1, 0, 0), (1, 0, 0), (0, 1, 0)]))
     g.node(scale=[0, 1, 1], mesh=g.mesh(TRIANGLE))
     g.write_gltf("degenerate.gltf")
+
+
+def sparse_object(g, indices, ctype, values):
+    """An accessor's "sparse": `indices` of type ctype, then `values` (packed bytes)."""
+    fmt = {U8: "B", U16: "H", U32: "I"}[ctype]
+    return {"count": len(indices),
+            "indices": {"bufferView": g.view(struct.pack("<%d%s" % (len(indices), fmt), *indices)),
+                        "componentType": ctype},
+            "values": {"bufferView": g.view(values)}}
+
+
+def sparse_no_view_triangle():
+    # POSITION without a bufferView: zeros, then elements 1 and 2 set (u32 sparse indices)
+    g = Gltf()
+    values = struct.pack("<6f", 1, 0, 0, 0, 1, 0)
+    pos = g.add("accessors", {"componentType": FLOAT, "count": 3, "type": "VEC3",
+                              "sparse": sparse_object(g, [1, 2], U32, values)})
+    g.node(mesh=g.add("meshes", {"primitives": [{"attributes": {"POSITION": pos}}]}))
+    return g
+
+
+def sparse():
+    # a quad and a second quad beside it, dense; then the same mesh with POSITION and the
+    # indices both sparse over a damaged bufferView (u8 and u16 sparse indices)
+    points = QUAD + [(2, 0, 0), (2, 1, 0)]
+    indices = [0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2]
+    g = Gltf()
+    g.node(mesh=g.mesh(points, indices))
+    g.write_gltf("sparse_dense.gltf")
+    g = Gltf()
+    damaged = [p if i not in (2, 5) else (9, 9, 9) for i, p in enumerate(points)]
+    g.mesh(damaged, [0, 1, 2, 0, 0, 0] + indices[6:])
+    values = struct.pack("<6f", *points[2], *points[5])
+    g.doc["accessors"][0]["sparse"] = sparse_object(g, [2, 5], U8, values)
+    g.doc["accessors"][1]["sparse"] = sparse_object(g, [4, 5], U16, struct.pack("<2H", 2, 3))
+    g.node(mesh=0)
+    g.write_gltf("sparse.gltf")
+    sparse_no_view_triangle().write_gltf("sparse_no_view.gltf")
+
+
+def attributes():
+    # one triangle with TEXCOORD_0..3 and COLOR_0..2 of each component type the glTF spec
+    # allows; 8-bit elements of 2 or 3 bytes are padded to 4 (vertex attribute alignment)
+    g = Gltf()
+    pos = g.positions(TRIANGLE)
+
+    def attribute(data, ctype, kind, stride=None, normalized=True):
+        accessor = {"bufferView": g.view(data, stride), "componentType": ctype, "count": 3, "type": kind}
+        if ctype != FLOAT and normalized:
+            accessor["normalized"] = True
+        return g.add("accessors", accessor)
+
+    uv_float = attribute(struct.pack("<6f", 0.5, 1.5, -1, 2, 0.25, 0), FLOAT, "VEC2")
+    uv_u8 = attribute(struct.pack("<2B2x2B2x2B2x", 0, 255, 51, 102, 255, 0), U8, "VEC2", stride=4)
+    uv_u16 = attribute(struct.pack("<6H", 0, 65535, 13107, 32768, 65535, 0), U16, "VEC2")
+    uv_sparse = g.add("accessors", dict(g.doc["accessors"][uv_float],
+                                        sparse=sparse_object(g, [1], U8, struct.pack("<2f", 7, 8))))
+    rgb_float = attribute(struct.pack("<9f", 1, 0, 0, 0, 1, 0, 0, 0, 0.5), FLOAT, "VEC3")
+    rgba_u8 = attribute(struct.pack("<12B", 255, 0, 0, 255, 0, 51, 0, 102, 0, 0, 255, 0), U8, "VEC4")
+    rgba_u16 = attribute(struct.pack("<12H", 65535, 0, 0, 65535, 0, 13107, 0, 0, 0, 0, 65535, 32768),
+                         U16, "VEC4")
+    rgb_u8 = attribute(struct.pack("<3Bx3Bx3Bx", 255, 0, 51, 0, 255, 0, 0, 0, 255), U8, "VEC3", stride=4)
+    g.doc["meshes"].append({"primitives": [{"attributes": {
+        "POSITION": pos, "TEXCOORD_0": uv_float, "TEXCOORD_1": uv_u8, "TEXCOORD_2": uv_u16,
+        "TEXCOORD_3": uv_sparse, "COLOR_0": rgb_float}},
+        {"attributes": {"POSITION": pos, "COLOR_0": rgba_u8, "COLOR_1": rgba_u16, "COLOR_2": rgb_u8}}]})
+    g.node(mesh=0)
+    g.write_gltf("attributes.gltf")
+    # KHR_texture_transform may be required: texture coordinates are read
+    g = one_triangle()
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_texture_transform"]
+    g.write_gltf("required_texture_transform.gltf")
+
+
+# --- Textures and vertex colours (issue #19; common/scene/gltf_textures.h) ---------------
+
+def png(width, height, rows, color_type=6, depth=8):
+    """A PNG from rows of raw samples (bytes, filter 0 prepended here): colour type 6 RGBA,
+    2 RGB, 0 grey, 4 grey + alpha; depth 8 or 16 (big-endian samples), 1 for grey."""
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    header = struct.pack(">IIBBBBB", width, height, depth, color_type, 0, 0, 0)
+    raw = b"".join(b"\0" + bytes(r) for r in rows)
+    assert len(rows) == height
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) +
+            chunk(b"IEND", b""))
+
+
+def data_uri(data, mime="image/png"):
+    return "data:%s;base64,%s" % (mime, base64.b64encode(data).decode())
+
+
+# The texture of tex_basic.gltf: 2 x 2 RGBA texels, row 0 on top.
+CHECKER_2X2 = png(2, 2, [[255, 0, 0, 255, 0, 255, 0, 255], [0, 0, 255, 255, 128, 128, 128, 128]])
+
+
+def textured_quad(g, material=0, colors=None, uv=((0, 0), (1, 0), (1, 1), (0, 1)), points=QUAD):
+    """A quad (two triangles) with TEXCOORD_0 (and COLOR_0 as VEC4 floats when given)."""
+    attrs = {"POSITION": g.positions(points)}
+    attrs["TEXCOORD_0"] = g.add("accessors", {"bufferView": g.view(b"".join(struct.pack("<2f", *t) for t in uv)),
+                                              "componentType": FLOAT, "count": 4, "type": "VEC2"})
+    if colors:
+        data = b"".join(struct.pack("<4f", *c) for c in colors)
+        attrs["COLOR_0"] = g.add("accessors", {"bufferView": g.view(data), "componentType": FLOAT,
+                                               "count": 4, "type": "VEC4"})
+    prim = {"attributes": attrs, "indices": g.indices([0, 1, 2, 0, 2, 3]), "material": material}
+    return g.add("meshes", {"primitives": [prim]})
+
+
+def textures():
+    import os
+
+    from gltf_builder import HERE
+    # tex_basic: base colour (clamp / mirrored, nearest), emissive (defaults, transformed),
+    # metallic-roughness (a 16-bit RGB image), normal and occlusion textures (warned about),
+    # COLOR_0; material 1 and images 2 and 3 are never used, so never read or decoded
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    mr16 = png(1, 1, [struct.pack(">3H", 0, 32896, 65535)], color_type=2, depth=16)
+    g.doc["images"] = [{"uri": data_uri(CHECKER_2X2)}, {"bufferView": g.view(mr16), "mimeType": "image/png"},
+                       {"uri": data_uri(b"\x89PNG\r\n\x1a\n broken")}, {"uri": "not_there.png"}]
+    g.doc["samplers"] = [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728, "minFilter": 9728}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 0}, {"source": 1}, {"source": 2}, {"source": 3}]
+    transform = {"offset": [0.25, 0.5], "rotation": 0.3, "scale": [2, 3]}
+    g.doc["materials"] = [
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1, 1], "baseColorTexture": {"index": 0},
+                                  "metallicFactor": 0.75, "roughnessFactor": 0.5,
+                                  "metallicRoughnessTexture": {"index": 2}},
+         "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 1, "extensions": {"KHR_texture_transform": transform}},
+         "normalTexture": {"index": 1}, "occlusionTexture": {"index": 1}},
+        {"pbrMetallicRoughness": {"baseColorTexture": {"index": 3}, "metallicRoughnessTexture": {"index": 4}}}]
+    colors = [(1, 0, 0, 1), (0, 1, 0, 1), (0, 0, 1, 0.5), (1, 1, 1, 1)]
+    g.node(mesh=textured_quad(g, colors=colors))
+    g.write_gltf("tex_basic.gltf")
+    # tex_channels: grey, grey + alpha and palette-free RGB images give RGBA texels
+    g = Gltf()
+    grey = png(2, 1, [[0, 200]], color_type=0)
+    grey_alpha = png(1, 1, [[77, 99]], color_type=4)
+    rgb = png(1, 1, [[10, 20, 30]], color_type=2)
+    g.doc["images"] = [{"uri": data_uri(grey)}, {"uri": data_uri(grey_alpha)}, {"uri": data_uri(rgb)}]
+    g.doc["textures"] = [{"source": 0}, {"source": 1}, {"source": 2}]
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                                                    "metallicRoughnessTexture": {"index": 2}},
+                           "emissiveTexture": {"index": 1}, "emissiveFactor": [1, 1, 1]}]
+    g.node(mesh=textured_quad(g))
+    g.write_gltf("tex_channels.gltf")
+    # an image in a file next to the scene; TEXCOORD_1 asked for (warned, TEXCOORD_0 read)
+    with open(os.path.join(HERE, "tex_external.png"), "wb") as f:
+        f.write(png(1, 1, [[10, 20, 30, 40]]))
+    for name, uri in (("tex_external.gltf", "tex_external.png"), ("tex_missing.gltf", "tex_missing.png"),
+                      ("tex_outside.gltf", "../gltf/tex_external.png"),
+                      ("tex_outside_encoded.gltf", "%2E%2E/gltf/tex_external.png")):
+        g = Gltf()
+        g.doc["images"] = [{"uri": uri}]
+        g.doc["textures"] = [{"source": 0}]
+        g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}}}]
+        g.node(mesh=textured_quad(g))
+        g.write_gltf(name)
+    # images that cannot be decoded, or are too large: each used by the quad's material
+    truncated = CHECKER_2X2[:len(CHECKER_2X2) - 20]  # the IDAT chunk cut short
+    import zlib
+    garbage = b"not deflate data"
+    bad_deflate = (CHECKER_2X2[:33] + struct.pack(">I", len(garbage)) + b"IDAT" + garbage +
+                   struct.pack(">I", zlib.crc32(b"IDAT" + garbage)) + CHECKER_2X2[-12:])  # chunks intact
+    wide = png(16385, 1, [[0] * 16385], color_type=0)
+    huge = png(16384, 16384, [b"\0" * 2048] * 16384, color_type=0, depth=1)  # 1 GiB of texels
+    cases = [("tex_malformed.gltf", [data_uri(b"\x89PNG\r\n\x1a\n" + b"\0\0\0\x0dIHDR broken")]),
+             ("tex_not_png.gltf", [data_uri(b"GIF89a\1\0\1\0\0\0\0;", "image/gif")]),
+             ("tex_truncated.glb", [truncated]), ("tex_bad_deflate.glb", [bad_deflate]),
+             ("tex_oversized.gltf", [data_uri(wide)]),
+             ("tex_total.glb", [huge, huge])]
+    for name, images in cases:
+        g = Gltf()
+        views = {}  # the same bytes in one bufferView (tex_total's two images)
+        g.doc["images"] = [{"uri": i} if isinstance(i, str) else
+                           {"bufferView": views.setdefault(i, g.view(i)) if i not in views else views[i],
+                            "mimeType": "image/png"} for i in images]
+        g.doc["textures"] = [{"source": k} for k in range(len(images))]
+        g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        if len(images) > 1:
+            g.doc["materials"][0]["emissiveTexture"] = {"index": 1}
+        g.node(mesh=textured_quad(g))
+        if name.endswith(".glb"):
+            g.write_glb(name)
+        else:
+            g.write_gltf(name)
+    # KHR_texture_transform's own example: offset (0, 1), a quarter turn, scale 0.5 read
+    # the image's lower-left quadrant, turned
+    g = Gltf()
+    g.doc["images"] = [{"uri": data_uri(CHECKER_2X2)}]
+    g.doc["textures"] = [{"source": 0}]
+    example = {"offset": [0, 1], "rotation": 1.57079632679, "scale": [0.5, 0.5]}
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {
+        "index": 0, "extensions": {"KHR_texture_transform": example}}}}]
+    g.node(mesh=textured_quad(g))
+    g.write_gltf("tex_transform.gltf")
+    # a sampler with a wrap mode glTF does not have; a texture index out of range
+    g = Gltf()
+    g.doc["images"] = [{"uri": data_uri(CHECKER_2X2)}]
+    g.doc["samplers"] = [{"wrapS": 1234}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    g.node(mesh=textured_quad(g))
+    g.write_gltf("tex_bad_sampler.gltf")
+    g.doc["samplers"] = [{}]
+    g.doc["materials"][0]["emissiveTexture"] = {"index": 3}
+    g.write_gltf("tex_bad_index.gltf")
+    # the image-bearing seed of the fuzzer's corpus (tests/fuzz): a .glb whose quad reads
+    # three textures and COLOR_0, under a camera
+    g = Gltf()
+    g.doc["images"] = [{"bufferView": g.view(CHECKER_2X2), "mimeType": "image/png"},
+                       {"bufferView": g.view(mr16), "mimeType": "image/png"}]
+    g.doc["samplers"] = [{"wrapS": 33648, "wrapT": 33071, "magFilter": 9729}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 1}]
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                                                    "metallicRoughnessTexture": {"index": 1}},
+                           "emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": transform}},
+                           "emissiveFactor": [0.5, 0.5, 0.5]}]
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    g.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}]
+    g.node(translation=[0.5, 0.5, 2], camera=0)
+    g.node(mesh=textured_quad(g, colors=colors))
+    g.write_glb("tex_seed.glb")
+    # the sky plane of the image tests (tests/stages/test_texture_images.cpp): a 2 x 2 quad
+    # at z = 0 filling an orthographic camera's view, a 4 x 4 texture repeated twice over it
+    g = Gltf()
+    rows = [sum(([(37 * i + 11) % 256, (91 * i + 200) % 256, (53 * i + 7) % 256, 255]
+                 for i in range(4 * y, 4 * y + 4)), []) for y in range(4)]
+    g.doc["images"] = [{"uri": data_uri(png(4, 4, rows))}]
+    g.doc["samplers"] = [{"magFilter": 9728}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 1, 1], "baseColorTexture": {"index": 0},
+                                                    "metallicFactor": 0}}]
+    g.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}]
+    g.node(translation=[0, 0, 1], camera=0)
+    plane = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    g.node(mesh=textured_quad(g, uv=((0, 2), (2, 2), (2, 0), (0, 0)), points=plane))
+    g.write_gltf("tex_sky_plane.gltf")
