@@ -46,9 +46,9 @@ void GpuBvhTracer::set_scene(const Scene& scene, const Bvh& bvh, const RaySet& r
     return m.buffers.back();
   };
   // The rays as pairs of vec4 (origin, direction) in binding 3, as the kernel reads them.
-  std::vector<glm::vec4> packed(2 * count);
+  std::vector<glm::vec4> packed(3 * count, glm::vec4(0.0f));  // origin, direction, unused (speed_gpu.cpp)
   for (std::size_t i = 0; i < count; i++) {
-    packed[2 * i] = glm::vec4(rays.origins[i], 1.0f), packed[2 * i + 1] = glm::vec4(rays.dirs[i], 0.0f);
+    packed[3 * i] = glm::vec4(rays.origins[i], 1.0f), packed[3 * i + 1] = glm::vec4(rays.dirs[i], 0.0f);
   }
   gpu::Buffer& triangles = storage(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
   gpu::Buffer& ray_buffer = storage(packed.data(), packed.size() * sizeof(glm::vec4));

@@ -4,7 +4,7 @@
 // Comparable with the CPU row "intersect_scene (renderer)" and with the naive loop
 // (naive_raycast.comp). Article: the raycasting step (Eq. 2), its closest-hit search. The
 // rays sit in binding 3 (gpu/kernel_bindings.glsl's point_lights: a position and an intensity 16 bytes
-// apart, read here as origin and direction); params.triangle_count is the triangle count,
+// apart in a 48-byte entry, read here as origin and direction); params.triangle_count is the triangle count,
 // params.width the ray count. With params.accel = kAccelBvh and the BVH at bindings 9 and 10
 // it walks common/kernel/bvh.glsl instead (the accel section, accel_gpu.cpp). The build's
 // kernel_definitions.glsl defines what the kernel files declare (cmake/Labs.cmake).

@@ -18,15 +18,15 @@ struct Triangle {  // common/kernel/scene_types.h's layout
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer TriangleBuffer { Triangle triangles[]; };
-layout(std430, set = 0, binding = 3) readonly buffer RayBuffer { vec4 rays[]; };  // origin, dir, origin, ...
+layout(std430, set = 0, binding = 3) readonly buffer RayBuffer { vec4 rays[]; };  // origin, dir, unused, origin, ...
 layout(std140, set = 0, binding = 4) uniform CountBuffer { uvec4 counts; };         // x: triangles, y: rays
 layout(std430, set = 0, binding = 5) writeonly buffer OutputBuffer { float t_out[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= counts.y) return;
-  vec3 o = rays[2u * i].xyz;
-  vec3 d = rays[2u * i + 1u].xyz;
+  vec3 o = rays[3u * i].xyz;
+  vec3 d = rays[3u * i + 1u].xyz;
   float best = 3.402823466e38;
   for (uint k = 0u; k < counts.x; k++) {
     vec3 p0 = triangles[k].p0;

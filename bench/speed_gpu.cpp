@@ -19,9 +19,10 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
                                 std::span<const glm::vec3> dirs, double seconds) {
   gpu::VulkanContext context("");
   const std::size_t count = origins.size();
-  // The rays as pairs of vec4 (origin, direction), as both kernels read them.
-  std::vector<glm::vec4> rays(2 * count);
-  for (std::size_t i = 0; i < count; i++) rays[2 * i] = glm::vec4(origins[i], 1.0f), rays[2 * i + 1] = glm::vec4(dirs[i], 0.0f);
+  // The rays as three vec4 each (origin, direction, unused: a PointLight's 48 bytes), as
+  // both kernels read them.
+  std::vector<glm::vec4> rays(3 * count, glm::vec4(0.0f));
+  for (std::size_t i = 0; i < count; i++) rays[3 * i] = glm::vec4(origins[i], 1.0f), rays[3 * i + 1] = glm::vec4(dirs[i], 0.0f);
   auto storage = [&](const void* data, std::size_t bytes) {
     gpu::Buffer b(context, std::max<std::size_t>(bytes, 64), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     if (data) b.write(data, bytes);

@@ -57,7 +57,12 @@ const uint kBvhStackSize = 64u;
 // Light kinds of the light table (stage4's light sampling).
 const uint kLightTriangle = 0u;  // an emissive triangle: a point uniform on its area
 const uint kLightSphere = 1u;    // an emissive sphere: a direction in the cone it subtends
-const uint kLightPoint = 2u;     // a KHR_lights_punctual point light: a delta
+const uint kLightPoint = 2u;     // a KHR_lights_punctual light (point, spot, directional): a delta
+
+// Kinds of KHR_lights_punctual light (PointLight.kind).
+const uint kPunctualPoint = 0u;        // from a point, equally in every direction
+const uint kPunctualSpot = 1u;         // from a point, within a cone about `direction`
+const uint kPunctualDirectional = 2u;  // from infinitely far, along `direction` (a sun)
 
 // Scene features (issue "model only what a scene requires"): the loader derives the set a
 // scene uses (scene.h: scene_feature_mask), and each kernel is specialised to it
@@ -126,11 +131,14 @@ struct Material {
   uint kind;           // kMaterial*
 };
 
+// A KHR_lights_punctual light: a point light, a spot light or a directional light.
 struct PointLight {
-  vec3 position;   // world position
-  float pad0;      // unused
-  vec3 intensity;  // radiant intensity, W/sr (colour x intensity)
-  float pad1;      // unused
+  vec3 position;    // world position (point, spot)
+  uint kind;        // kPunctual*
+  vec3 intensity;   // colour x intensity: W/sr (point, spot), irradiance W/m^2 (directional)
+  float cos_outer;  // spot: cosine of the outer cone angle, where the light ends
+  vec3 direction;   // spot, directional: the unit direction the light travels (node's -Z)
+  float cos_inner;  // spot: cosine of the inner cone angle, within which it is full
 };
 
 // One entry of the light table: lights are picked in proportion to their power.
@@ -238,8 +246,8 @@ static_assert(sizeof(Sphere) == 32);
 static_assert(offsetof(Sphere, radius) == 12 && offsetof(Sphere, material) == 16);
 static_assert(sizeof(Material) == 48);
 static_assert(offsetof(Material, emission) == 16 && offsetof(Material, alpha) == 32);
-static_assert(sizeof(PointLight) == 32);
-static_assert(offsetof(PointLight, intensity) == 16);
+static_assert(sizeof(PointLight) == 48);
+static_assert(offsetof(PointLight, intensity) == 16 && offsetof(PointLight, direction) == 32);
 static_assert(sizeof(Light) == 16);
 static_assert(sizeof(Camera) == 64);
 static_assert(offsetof(Camera, forward) == 16 && offsetof(Camera, right) == 32 && offsetof(Camera, up) == 48);

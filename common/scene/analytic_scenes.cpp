@@ -2,6 +2,7 @@
 // closed form, which the tests of every stage render (docs/testing.md).
 #include "common/scene/analytic_scenes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -106,12 +107,23 @@ Scene make_quad(const QuadScene& a) {
   return s;
 }
 
+double spot_falloff(double inner, double outer, double theta) {
+  double t = std::clamp((std::cos(theta) - std::cos(outer)) / std::max(1e-3, std::cos(inner) - std::cos(outer)), 0.0, 1.0);
+  return t * t;
+}
+
 Scene make_point_floor(const PointFloorScene& a) {
   Scene s;
   uint floor = s.add_material(make_diffuse(glm::vec3(a.floor.albedo)));
   float h = a.floor.floor_half;
   add_quad(s, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, floor);
-  s.point_lights.push_back(PointLight{glm::vec3(0.0f, a.floor.light_height, 0.0f), 0.0f, a.intensity, 0.0f});
+  const glm::vec3 position(0.0f, a.floor.light_height, 0.0f), down(0.0f, -1.0f, 0.0f);
+  if (a.kind == kPunctualPoint) s.point_lights.push_back(make_point_light(position, a.intensity));
+  if (a.kind == kPunctualSpot) s.point_lights.push_back(make_spot_light(position, down, a.intensity, a.inner, a.outer));
+  if (a.kind == kPunctualDirectional) {
+    glm::vec3 along(std::sin(a.sun_angle), -std::cos(a.sun_angle), 0.0f);
+    s.point_lights.push_back(make_directional_light(along, a.intensity));
+  }
   s.camera = orthographic_down({0.0f, a.floor.camera_height, 0.0f}, a.floor.view_half);
   build_light_table(s);
   return s;
@@ -120,7 +132,7 @@ Scene make_point_floor(const PointFloorScene& a) {
 Scene make_point_in_sphere(const PointInSphereScene& a) {
   Scene s;
   s.add_sphere(glm::vec3(0.0f), a.radius, s.add_material(make_diffuse(glm::vec3(a.albedo))));
-  s.point_lights.push_back(PointLight{glm::vec3(0.0f), 0.0f, glm::vec3(a.intensity), 0.0f});
+  s.point_lights.push_back(make_point_light(glm::vec3(0.0f), glm::vec3(a.intensity)));
   CameraDesc cam;
   cam.yfov = 1.2f;
   s.camera = cam;  // at the centre, looking down -Z

@@ -74,11 +74,25 @@ constexpr float kSmallLightHalf = 0.1f;
 constexpr float kLargeLightHalf = 2.0f;
 
 // builtin:point_floor — the floor of FloorLightScene under a point light of intensity I
-// at the emitter's height: radiance albedo I cos(theta) / (pi d^2). Only stage4 sees it.
+// at the emitter's height: radiance albedo I cos(theta) / (pi d^2). Only stages 4 and 5
+// see it. builtin:spot_floor — the same with a spot light pointing straight down: times
+// its falloff (common/kernel/lights.glsl spot_falloff).
+// builtin:sun_floor — the floor under a directional light of irradiance E at angle theta
+// from the vertical: albedo E cos(theta) / pi everywhere.
 struct PointFloorScene {
   FloorLightScene floor;
-  glm::vec3 intensity{2.0f, 2.0f, 2.0f};  // W/sr
+  uint kind = kPunctualPoint;             // kPunctual*
+  glm::vec3 intensity{2.0f, 2.0f, 2.0f};  // W/sr; W/m^2 for the directional light
+  // A spot light's cone angles (radians): the outer cone holds the whole view (whose
+  // corners are 1.13 rad off the axis), since a pixel that the falloff's last sliver
+  // only grazes is lit by a few rare samples and its variance misjudged; the kernel test
+  // (test_light_sampling.cpp) checks the dark beyond the outer cone.
+  float inner = 0.4f, outer = 1.2f;
+  float sun_angle = 0.6435011f;           // a directional light's angle from the vertical (cos 0.8)
 };
+// The falloff of a spot light with these cone angles at angle theta from its axis, in double:
+// what spot_falloff computes, for the tests' closed forms.
+double spot_falloff(double inner, double outer, double theta);
 
 // builtin:point_in_sphere — the inside of a diffuse sphere (radius 1, albedo 0.5) lit by a
 // point light of intensity pi at its centre, seen from the centre: every pixel is

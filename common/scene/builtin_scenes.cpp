@@ -88,7 +88,8 @@ Scene cornell_glass() {
 // Every feature the renderer models in one room (issue "model only what a scene
 // requires": the general kernel's own scene): triangles and spheres; diffuse, mirror,
 // GGX, glass and mixed materials; a textured back wall with vertex colours; emissive
-// triangles, an emissive sphere and a point light (render it with --sky for the last feature).
+// triangles, an emissive sphere, a point light and a spot light (render it with --sky for
+// the last feature).
 Scene every_feature() {
   Scene s;
   cornell_room(s);
@@ -98,7 +99,8 @@ Scene every_feature() {
   s.add_sphere({0.5f, 0.1f, -0.5f}, 0.2f, s.add_material(make_metal(glm::vec3(0.9f), 0.0f)));
   s.add_sphere({0.0f, 0.6f, 0.3f}, 0.05f, s.add_material(make_diffuse(glm::vec3(0.0f), {20.0f, 20.0f, 30.0f})));
   add_textured_back_wall(s);
-  s.point_lights.push_back(PointLight{glm::vec3(0.6f, 0.8f, 0.6f), 0.0f, glm::vec3(0.3f, 0.3f, 0.2f), 0.0f});
+  s.point_lights.push_back(make_point_light({0.6f, 0.8f, 0.6f}, {0.3f, 0.3f, 0.2f}));
+  s.point_lights.push_back(make_spot_light({-0.6f, 0.9f, -0.6f}, {0.0f, -1.0f, 0.0f}, {0.4f, 0.35f, 0.3f}, 0.3f, 0.5f));
   return s;
 }
 
@@ -175,6 +177,18 @@ const std::vector<Builtin>& registry() {
        [] { return analytic::make_glass_slab({}); }},
       {{"point_floor", "a diffuse floor under a point light: albedo I cos / (pi d^2) (stage4)"},
        [] { return analytic::make_point_floor({}); }},
+      {{"spot_floor", "builtin:point_floor with a spot light pointing down (cones 0.4, 1.2 rad): times its falloff"},
+       [] {
+         analytic::PointFloorScene a;
+         a.kind = kPunctualSpot;
+         return analytic::make_point_floor(a);
+       }},
+      {{"sun_floor", "a diffuse floor under a directional light E at cos 0.8 from the vertical: albedo E 0.8 / pi"},
+       [] {
+         analytic::PointFloorScene a;
+         a.kind = kPunctualDirectional;
+         return analytic::make_point_floor(a);
+       }},
       {{"point_in_sphere", "inside a diffuse sphere with a point light of intensity pi at its centre: 1 (stage4)"},
        [] { return analytic::make_point_in_sphere({}); }},
   };

@@ -157,14 +157,30 @@ class SceneBuilder {
     scene_.cameras.push_back(SceneCamera{desc, index, c.name, node.name.empty() ? where : node.name});
   }
 
+  // A KHR_lights_punctual light on a node: a point light at the node's origin, a spot or
+  // directional light shining along the node's -Z. Units are taken as radiometric: the
+  // intensity as W/sr (point, spot) or W/m^2 (directional), as the renderer's other lights.
   void add_light(int index, const glm::dmat4& world) {
     const tinygltf::Light& light = model_.lights[index];
-    if (light.type != "point") {
-      warn_once(file_ + ": scene has " + light.type +
-                " lights (KHR_lights_punctual); only point lights are modelled");
+    std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
+    PointLight out{};
+    if (light.type == "point") {
+      out.kind = kPunctualPoint;
+    } else if (light.type == "spot") {
+      out.kind = kPunctualSpot;
+      const double half_pi = 1.5707963267948966;
+      float inner = checked_float(file_, light.spot.innerConeAngle, where + ".spot.innerConeAngle", 0.0, half_pi);
+      float outer = checked_float(file_, light.spot.outerConeAngle, where + ".spot.outerConeAngle", 0.0, half_pi);
+      if (!(inner < outer))
+        fail(file_, where + ".spot.innerConeAngle must be less than its outerConeAngle: " + gltf::kReexport);
+      out.cos_inner = std::cos(inner), out.cos_outer = std::cos(outer);
+    } else if (light.type == "directional") {
+      out.kind = kPunctualDirectional;
+    } else {
+      warn_once(file_ + ": scene has lights of type \"" + light.type +
+                "\" (KHR_lights_punctual); only point, spot and directional lights are modelled");
       return;
     }
-    std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
     float intensity = checked_float(file_, light.intensity, where + ".intensity", 0.0);
     glm::vec3 color(1.0f);
     if (!light.color.empty() && light.color.size() != 3)
@@ -172,11 +188,22 @@ class SceneBuilder {
     for (std::size_t k = 0; k < light.color.size(); ++k) {
       color[int(k)] = checked_float(file_, light.color[k], where + ".color[" + std::to_string(k) + "]", 0.0);
     }
-    glm::vec3 position(world[3]);
-    glm::vec3 power = intensity * color;
-    if (!std::isfinite(power.x + power.y + power.z))
+    out.intensity = intensity * color;
+    if (!std::isfinite(out.intensity.x + out.intensity.y + out.intensity.z))
       fail(file_, where + ": intensity x color overflows: " + gltf::kReexport);
-    scene_.point_lights.push_back(PointLight{position, 0.0f, power, 0.0f});
+    if (light.range > 0.0 && out.kind != kPunctualDirectional)
+      warn_once(file_ + ": scene has lights with a range; it is ignored (light falls off as 1 / d^2 to any distance)");
+    out.position = glm::vec3(world[3]);
+    if (out.kind != kPunctualPoint) {
+      glm::dvec3 axis = -glm::dvec3(world[2]);  // the node's -Z in the world
+      double length = glm::length(axis);
+      if (!(length > 0.0) || !std::isfinite(length)) {
+        warn_once(file_ + ": a " + light.type + " light's node is scaled to nothing; the light is skipped");
+        return;
+      }
+      out.direction = glm::vec3(axis / length);
+    }
+    scene_.point_lights.push_back(out);
   }
 
   void add_mesh(int mesh_index, const glm::dmat4& world) {

@@ -126,6 +126,18 @@ Material make_diffuse(glm::vec3 albedo, glm::vec3 emission, bool double_sided) {
   return m;
 }
 
+PointLight make_point_light(glm::vec3 position, glm::vec3 intensity) {
+  return PointLight{position, kPunctualPoint, intensity, 0.0f, glm::vec3(0.0f), 0.0f};
+}
+
+PointLight make_spot_light(glm::vec3 position, glm::vec3 direction, glm::vec3 intensity, float inner, float outer) {
+  return PointLight{position, kPunctualSpot, intensity, std::cos(outer), glm::normalize(direction), std::cos(inner)};
+}
+
+PointLight make_directional_light(glm::vec3 direction, glm::vec3 irradiance) {
+  return PointLight{glm::vec3(0.0f), kPunctualDirectional, irradiance, 0.0f, glm::normalize(direction), 0.0f};
+}
+
 Material make_metal(glm::vec3 f0, float roughness) {
   Material m = base_material(f0, roughness > 0.0f ? kMaterialConductor : kMaterialMirror);
   m.metallic = 1.0f, m.alpha = roughness * roughness, m.transmission = 0.0f, m.ior = 1.5f;
@@ -189,6 +201,21 @@ glm::vec3 mean_emission(const Scene& scene, uint material, std::vector<std::opti
   if (!means[tex]) means[tex] = srgb_texture_mean(scene, tex);
   return glm::vec3(glm::dvec3(e) * *means[tex]);
 }
+// A punctual light's power, by which the light table picks it (any positive number would
+// be unbiased; the closer to the light's share of the light, the less noise). A point
+// light sends I into 4 pi sr; a spot light into its cone, up to halfway along the falloff
+// (the cone of angle between the inner and outer, 2 pi (1 - cos)); a directional light
+// lights the scene's cross-section, pi r^2 for the radius r of its bounding sphere.
+double punctual_power(const Scene& scene, const PointLight& l) {
+  double i = luminance(l.intensity);
+  if (l.kind == kPunctualSpot) return 2.0 * M_PI * (1.0 - 0.5 * (double(l.cos_inner) + double(l.cos_outer))) * i;
+  if (l.kind == kPunctualDirectional) {
+    Bounds b = scene.bounds();
+    double r = b.empty() ? 1.0 : 0.5 * double(glm::length(b.hi - b.lo));
+    return M_PI * r * r * i;
+  }
+  return 4.0 * M_PI * i;
+}
 }  // namespace
 
 void build_light_table(Scene& scene) {
@@ -216,7 +243,7 @@ void build_light_table(Scene& scene) {
   }
   for (std::size_t i = 0; i < scene.point_lights.size(); i++) {
     scene.lights.push_back(Light{kLightPoint, uint(i), 0.0f, 0.0f});
-    power.push_back(4.0 * M_PI * luminance(scene.point_lights[i].intensity));
+    power.push_back(punctual_power(scene, scene.point_lights[i]));
   }
   double total = 0.0;
   for (double p : power) total += p;
@@ -307,7 +334,7 @@ std::string feature_names(uint mask) {
       {{kFeatureDiffuse, "diffuse"}, {kFeatureMirror, "mirror"}, {kFeatureConductor, "GGX conductor"},
        {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureTextures, "textures"}},
       {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
-       {kFeaturePointLights, "point lights"}, {kFeatureSky, "sky"}}};
+       {kFeaturePointLights, "punctual lights"}, {kFeatureSky, "sky"}}};
   std::string s;
   for (int g = 0; g < 3; g++) {
     std::string part;

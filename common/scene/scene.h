@@ -92,6 +92,13 @@ Material make_glass(glm::vec3 tint, float ior);
 Material make_gltf_material(glm::vec3 base, float metallic, float roughness, float transmission,
                             float ior, glm::vec3 emission, bool double_sided);
 
+// KHR_lights_punctual lights (common/kernel/scene_types.h PointLight): intensity in W/sr,
+// a spot's cone angles in radians (0 <= inner < outer <= pi/2), a directional light's
+// irradiance in W/m^2; `direction` is where the light travels, made unit here.
+PointLight make_point_light(glm::vec3 position, glm::vec3 intensity);
+PointLight make_spot_light(glm::vec3 position, glm::vec3 direction, glm::vec3 intensity, float inner, float outer);
+PointLight make_directional_light(glm::vec3 direction, glm::vec3 irradiance);
+
 // The kernel camera for an image of the given aspect (width / height). With no camera in
 // the scene, frame_bounds places one.
 Camera make_camera(const Scene& scene, float aspect);

@@ -9,6 +9,7 @@
 #include "stage2_montecarlo/kernels.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
+#include "stage5_mis/kernels.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
@@ -60,7 +61,13 @@ TEST_CASE("stage3: CPU and GPU images of the same seed agree to rounding", "[sta
 TEST_CASE("stage4: CPU and GPU images of the same seed agree to rounding", "[stage4][gpu]") {
   RenderSettings s = settings(48, 36, 4, 24);
   s.roulette = kRouletteThroughput;
-  check_agreement(stage4::kernels(), {"cornell", "furnace", "glass_slab", "point_floor"}, s);
+  check_agreement(stage4::kernels(), {"cornell", "furnace", "glass_slab", "point_floor", "spot_floor", "sun_floor"}, s);
+}
+
+TEST_CASE("stage5: CPU and GPU images of the same seed agree to rounding under punctual lights", "[stage5][gpu]") {
+  RenderSettings s = settings(48, 36, 4, 25);
+  s.roulette = kRouletteThroughput;
+  check_agreement(stage5::kernels(), {"point_floor", "spot_floor", "sun_floor"}, s);
 }
 
 // The GPU reads the triangles from a uniform copy when they fit (gpu_backend.cpp, 1364 on

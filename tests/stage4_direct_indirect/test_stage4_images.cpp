@@ -68,6 +68,16 @@ TEST_CASE("stage4: a point light above a diffuse floor gives albedo I cos / (pi 
   check_point_floor(stage4::kernels(), 20, test_seed(2600));
 }
 
+TEST_CASE("stage4: a spot light pointing down at a diffuse floor gives albedo I falloff cos / (pi d^2)",
+          "[stage4][statistical][analytic][punctual]") {
+  check_point_floor(stage4::kernels(), 20, test_seed(2610), kPunctualSpot);
+}
+
+TEST_CASE("stage4: a directional light on a diffuse floor gives albedo E cos / pi everywhere",
+          "[stage4][statistical][analytic][punctual]") {
+  check_point_floor(stage4::kernels(), 8, test_seed(2620), kPunctualDirectional);
+}
+
 TEST_CASE("stage4: inside a diffuse sphere lit by a point light of intensity pi at its centre every pixel is 1",
           "[stage4][statistical][analytic]") {
   check_point_in_sphere(stage4::kernels(), test_seed(2700));

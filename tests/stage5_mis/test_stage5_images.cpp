@@ -180,6 +180,12 @@ TEST_CASE("stage5: a point light above a diffuse floor gives albedo I cos / (pi 
   check_point_floor(stage5::kernels(), 16, test_seed(5700));
 }
 
+TEST_CASE("stage5: a spot light and a directional light above a diffuse floor (delta lights: the light sample alone)",
+          "[stage5][statistical][analytic][punctual]") {
+  check_point_floor(stage5::kernels(), 16, test_seed(5710), kPunctualSpot);
+  check_point_floor(stage5::kernels(), 8, test_seed(5720), kPunctualDirectional);
+}
+
 TEST_CASE("stage5: inside a diffuse sphere lit by a point light of intensity pi at its centre every pixel is 1",
           "[stage5][statistical][analytic]") {
   check_point_in_sphere(stage5::kernels(), test_seed(5800));

@@ -32,9 +32,10 @@ void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool tri
 void check_mirror(const StageKernels& kernels, std::uint32_t seed);
 // A glass slab before an emitter: Le (1 - R) / (1 + R); invisible at ior 1.
 void check_glass_slab(const StageKernels& kernels, float ior, std::uint32_t seed);
-// A point light above a diffuse floor (light sampling only: stages 4 and 5), size x size
-// pixels: albedo I cos / (pi d^2), averaged over each pixel.
-void check_point_floor(const StageKernels& kernels, int size, std::uint32_t seed);
+// A punctual light above a diffuse floor (light sampling only: stages 4 and 5), size x size
+// pixels, averaged over each pixel: a point light (kPunctualPoint) albedo I cos / (pi d^2),
+// a spot light pointing down that times its falloff, a directional light albedo E cos / pi.
+void check_point_floor(const StageKernels& kernels, int size, std::uint32_t seed, uint kind = kPunctualPoint);
 // Inside a diffuse sphere with a point light at its centre (stages 4 and 5): every pixel
 // albedo I / (pi r^2) / (1 - albedo).
 void check_point_in_sphere(const StageKernels& kernels, std::uint32_t seed);

@@ -18,7 +18,16 @@ double polygon_irradiance(const std::vector<glm::dvec3>& polygon, glm::dvec3 poi
 }
 
 double rect_average(double x0, double y0, double x1, double y1, double (*f)(double, double, const void*),
-                    const void* data) {
+                    const void* data, int cells) {
+  if (cells > 1) {
+    double sum = 0.0, dx = (x1 - x0) / cells, dy = (y1 - y0) / cells;
+    for (int i = 0; i < cells; i++) {
+      for (int j = 0; j < cells; j++) {
+        sum += rect_average(x0 + i * dx, y0 + j * dy, x0 + (i + 1) * dx, y0 + (j + 1) * dy, f, data, 1);
+      }
+    }
+    return sum / (double(cells) * cells);
+  }
   static const double nodes[6] = {-0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
                                   0.2386191860831969,  0.6612093864662645,  0.9324695142031521};
   static const double weights[6] = {0.1713244923791704, 0.3607615730481386, 0.4679139345726910,

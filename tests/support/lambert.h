@@ -13,8 +13,9 @@ namespace pt::test {
 // The polygon (convex, wholly above the point's tangent plane) of radiance Le.
 double polygon_irradiance(const std::vector<glm::dvec3>& polygon, glm::dvec3 point, glm::dvec3 normal, double Le);
 
-// The mean of f over [x0,x1] x [y0,y1] by 6 x 6 Gauss-Legendre points (smooth f).
+// The mean of f over [x0,x1] x [y0,y1] by 6 x 6 Gauss-Legendre points (smooth f), in each of
+// cells x cells equal parts of the rectangle (for an f with a kink inside).
 double rect_average(double x0, double y0, double x1, double y1, double (*f)(double, double, const void*),
-                    const void* data);
+                    const void* data, int cells = 1);
 
 }  // namespace pt::test

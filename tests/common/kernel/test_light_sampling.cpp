@@ -3,8 +3,10 @@
 // pick probabilities follow the lights' power.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
+#include "common/scene/analytic_scenes.h"
 #include "common/scene/scene.h"
 #include "cpu/kernel_prelude.h"
 #include "tests/support/test_render.h"
@@ -106,7 +108,7 @@ TEST_CASE("light sampling: lights are picked in proportion to their power", "[st
   uint bright = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(3.0f), true));
   s.add_triangle({0, 1, 0}, {1, 1, 0}, {0, 1, 1}, dim);     // area 0.5, one side
   s.add_triangle({0, 2, 0}, {2, 2, 0}, {0, 2, 1}, bright);  // area 1, both sides, 3x brighter
-  s.point_lights.push_back(pt::PointLight{glm::vec3(0, 3, 0), 0.0f, glm::vec3(1, 1, 1), 0.0f});
+  s.point_lights.push_back(pt::make_point_light({0, 3, 0}, {1, 1, 1}));
   pt::build_light_table(s);
   REQUIRE(s.lights.size() == 3);
   // Powers: pi 0.5 1, pi 1 2 3, 4 pi 1 -> 0.5 : 6 : 4.
@@ -119,4 +121,63 @@ TEST_CASE("light sampling: lights are picked in proportion to their power", "[st
   CHECK(kernel::pick_light(0.0f) == 0u);
   CHECK(kernel::pick_light(0.05f) == 1u);
   CHECK(kernel::pick_light(0.99f) == 2u);
+}
+
+TEST_CASE("light sampling: a spot light's weight is I falloff / d^2, full within the inner cone, none beyond the outer",
+          "[stage4][lights][punctual]") {
+  pt::Scene s;
+  s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  const float inner = 0.2f, outer = 0.6f, h = 2.0f;
+  s.point_lights.push_back(pt::make_spot_light({0.0f, h, 0.0f}, {0.0f, -1.0f, 0.0f}, {5.0f, 4.0f, 3.0f}, inner, outer));
+  pt::build_light_table(s);
+  kernel::bind_scene(s);
+  for (double theta : {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.59, 0.61, 0.9}) {
+    // The floor point seen from the light at angle theta from its axis.
+    glm::vec3 p(float(h * std::tan(theta)), 0.0f, 0.0f);
+    kernel::LightSample ls = kernel::sample_point_light(0, p, 0.5f);
+    double c = std::cos(theta), t = std::clamp((c - std::cos(outer)) / (std::cos(inner) - std::cos(outer)), 0.0, 1.0);
+    double d2 = double(h) * h / (c * c);
+    INFO("theta " << theta);
+    CHECK(ls.weight.x == Approx(5.0 * t * t / (d2 * 0.5)).margin(1e-6));
+    CHECK(ls.weight.z == Approx(3.0 * t * t / (d2 * 0.5)).margin(1e-6));
+    CHECK(ls.pdf == 0.0f);  // a delta light
+    if (t > 0.0) {
+      CHECK(ls.dist == Approx(std::sqrt(d2)));
+      CHECK(ls.wi.y == Approx(c));
+    }
+  }
+  CHECK(pt::analytic::spot_falloff(inner, outer, 0.4) ==
+        Approx(std::pow((std::cos(0.4) - std::cos(outer)) / (std::cos(inner) - std::cos(outer)), 2.0)));
+}
+
+TEST_CASE("light sampling: a directional light arrives from -direction, from infinitely far, with weight E / pick",
+          "[stage4][lights][punctual]") {
+  pt::Scene s;
+  s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  s.point_lights.push_back(pt::make_directional_light({0.6f, -0.8f, 0.0f}, glm::vec3(2.0f)));
+  pt::build_light_table(s);
+  kernel::bind_scene(s);
+  for (glm::vec3 p : {glm::vec3(0.0f), glm::vec3(1e4f, -3.0f, 7.0f)}) {
+    kernel::LightSample ls = kernel::sample_point_light(0, p, 0.25f);
+    CHECK(ls.wi.x == Approx(-0.6f));
+    CHECK(ls.wi.y == Approx(0.8f));
+    CHECK(ls.dist == kernel::kInfinity);
+    CHECK(ls.weight.y == Approx(8.0f));
+    CHECK(ls.pdf == 0.0f);
+  }
+}
+
+TEST_CASE("light sampling: spot and directional lights are picked by their power", "[stage4][lights][punctual]") {
+  pt::Scene s;
+  uint m = s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  s.add_triangle({-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, m);  // bounds: a 2 x 0 x 2 box, radius sqrt(2)
+  s.point_lights = {pt::make_point_light({0, 1, 0}, glm::vec3(1.0f)),
+                    pt::make_spot_light({0, 2, 0}, {0, -1, 0}, glm::vec3(1.0f), std::acos(0.9f), std::acos(0.7f)),
+                    pt::make_directional_light({0, -1, 0}, glm::vec3(1.0f))};
+  pt::build_light_table(s);
+  REQUIRE(s.lights.size() == 3);
+  // Powers: point 4 pi; spot 2 pi (1 - (0.9 + 0.7) / 2) = 0.4 pi; directional pi r^2 = 2 pi.
+  CHECK(s.lights[0].pick == Approx(4.0 / 6.4).epsilon(1e-5));
+  CHECK(s.lights[1].pick == Approx(0.4 / 6.4).epsilon(1e-5));
+  CHECK(s.lights[2].pick == Approx(2.0 / 6.4).epsilon(1e-5));
 }

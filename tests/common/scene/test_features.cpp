@@ -12,10 +12,10 @@ TEST_CASE("features: built-in and shipped scenes report what they use", "[featur
   CHECK(scene_features(make_builtin_scene("sphere"), glm::vec3(1.0f)) == "spheres; diffuse; sky");
   CHECK(scene_features(make_builtin_scene("mirror"), glm::vec3(0.0f)) == "triangles; diffuse, mirror; emissive triangles");
   CHECK(scene_features(make_builtin_scene("glass_slab"), glm::vec3(0.0f)) == "triangles; diffuse, glass; emissive triangles");
-  CHECK(scene_features(make_builtin_scene("point_in_sphere"), glm::vec3(0.0f)) == "spheres; diffuse; point lights");
+  CHECK(scene_features(make_builtin_scene("point_in_sphere"), glm::vec3(0.0f)) == "spheres; diffuse; punctual lights");
   CHECK(scene_features(make_builtin_scene("furnace_sphere"), glm::vec3(0.0f)) == "spheres; diffuse; emissive spheres");
   CHECK(scene_features(load_scene(PT_SOURCE_DIR "/scenes/glossy_glass.gltf"), glm::vec3(0.0f)) ==
-        "triangles; diffuse, GGX conductor, glass; emissive triangles, point lights");
+        "triangles; diffuse, GGX conductor, glass; emissive triangles, punctual lights");
   // The benchmark's scenes (bench/runs.txt), and the one with every feature.
   CHECK(scene_features(make_builtin_scene("cornell_glossy"), glm::vec3(0.0f)) == "triangles; diffuse, GGX conductor; emissive triangles");
   CHECK(scene_features(make_builtin_scene("cornell_glass"), glm::vec3(0.0f)) == "triangles, spheres; diffuse, glass; emissive triangles");
