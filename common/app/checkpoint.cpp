@@ -86,6 +86,11 @@ std::uint64_t scene_hash(const Scene& scene) {
   f.add_vector(scene.materials);
   f.add_vector(scene.point_lights);
   f.add_vector(scene.lights);
+  // Textures and vertex colours (empty without them).
+  f.add_vector(scene.triangle_attributes);
+  f.add_vector(scene.material_textures);
+  f.add_vector(scene.textures);
+  f.add_vector(scene.texels);
   return f.h;
 }
 

@@ -120,6 +120,15 @@ TEST_CASE("checkpoint: the render key changes with everything that determines th
   Scene recoloured = scene;
   recoloured.materials[0].base_color.y *= 0.5f;
   CHECK(render_key("stage4_direct_indirect", recoloured, s) != key);
+  // A texel of a textured scene: the textures are part of the content too.
+  Scene textured = make_builtin_scene("every_feature");
+  REQUIRE(!textured.texels.empty());
+  const std::uint64_t textured_key = render_key("stage4_direct_indirect", textured, s);
+  textured.texels[0] ^= 1u;
+  CHECK(render_key("stage4_direct_indirect", textured, s) != textured_key);
+  Scene relit = make_builtin_scene("every_feature");
+  relit.point_lights.back().cos_outer *= 0.99f;  // a spot light's cone
+  CHECK(render_key("stage4_direct_indirect", relit, s) != textured_key);
 }
 
 TEST_CASE("checkpoint: one of another render, a damaged or a truncated file is refused with exit 2",
