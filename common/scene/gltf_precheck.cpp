@@ -30,15 +30,6 @@ namespace fs = std::filesystem;
 
 constexpr int kMaxJsonDepth = 64;  // real files nest about 8 levels
 const std::set<std::string> kSizeKeys = {"byteOffset", "byteLength", "byteStride", "count"};
-constexpr char kLfsPointer[] = "version https://git-lfs.github.com/spec/v1";
-const std::string kLfsAdvice = "run `git lfs pull` in its repository (or download the real file)";
-
-// A clone without `git lfs pull` holds small text files in place of the real ones.
-bool is_lfs_pointer(const unsigned char* bytes, std::size_t size) {
-  const std::size_t n = sizeof kLfsPointer - 1;
-  return size >= n && std::memcmp(bytes, kLfsPointer, n) == 0;
-}
-
 bool file_is_lfs_pointer(const fs::path& path) {
   unsigned char head[sizeof kLfsPointer - 1];
   std::ifstream in(path, std::ios::binary);

@@ -4,8 +4,12 @@
 // against kMaxTexelBytes before any is decoded.
 #include "common/scene/gltf_textures.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 
@@ -74,12 +78,41 @@ void check_png_chunks(std::span<const unsigned char> bytes, const std::string& f
   }
 }
 
+// libpng writes its errors on stderr itself as well as handing them to OpenImageIO, which
+// hands them to us: while OpenImageIO reads, file descriptor 2 goes to /dev/null, so that a
+// damaged image gives only fail()'s one line. The scene loads before any render thread
+// starts, so nothing else is writing then.
+class QuietStderr {
+ public:
+  QuietStderr() {
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStderr() {
+    if (saved_ < 0) return;
+    std::fflush(stderr);
+    ::dup2(saved_, 2);
+    ::close(saved_);
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 // An image opened by OpenImageIO from memory: its header read, its texels not yet.
 class OpenedImage {
  public:
   OpenedImage(std::span<const unsigned char> bytes, const std::string& file, const std::string& what)
       : file_(file), what_(what) {
     const bool png = starts_with(bytes, "\x89PNG\r\n\x1a\n", 8), jpeg = starts_with(bytes, "\xff\xd8\xff", 3);
+    if (detail::is_lfs_pointer(bytes.data(), bytes.size())) {
+      fail(file, what + " is a Git LFS pointer, not the image itself: " + detail::kLfsAdvice);
+    }
     if (!png && !jpeg) {
       fail(file, what + " is neither a PNG nor a JPEG image: glTF images are PNG or JPEG; convert it and re-export");
     }
@@ -91,7 +124,12 @@ class OpenedImage {
     input_->set_ioproxy(reader_.get());
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // glTF's alpha is straight: keep the colour as stored
-    if (!input_->open(png ? "image.png" : "image.jpg", spec_, config)) {
+    bool opened;
+    {
+      QuietStderr quiet;
+      opened = input_->open(png ? "image.png" : "image.jpg", spec_, config);
+    }
+    if (!opened) {
       fail(file, what + " cannot be decoded (" + short_error(input_->geterror()) +
                      "): the image is damaged or truncated; re-export it");
     }
@@ -121,8 +159,13 @@ class OpenedImage {
     std::vector<unsigned char> rows(std::size_t(spec_.width) * channels * rows_per_read);
     for (int y0 = 0; y0 < spec_.height; y0 += rows_per_read) {
       const int y1 = std::min(spec_.height, y0 + rows_per_read);
-      if (!input_->read_scanlines(0, 0, spec_.y + y0, spec_.y + y1, 0, 0, channels, OIIO::TypeDesc::UINT8,
-                                  rows.data())) {
+      bool read;
+      {
+        QuietStderr quiet;
+        read = input_->read_scanlines(0, 0, spec_.y + y0, spec_.y + y1, 0, 0, channels, OIIO::TypeDesc::UINT8,
+                                      rows.data());
+      }
+      if (!read) {
         fail(file_, what_ + " cannot be decoded (" + short_error(input_->geterror()) +
                         "): the image is damaged or truncated; re-export it");
       }

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <set>
 #include <string>
 
@@ -26,6 +27,16 @@ inline std::string supported_extensions_text() {
 }
 
 inline std::string str(std::uint64_t n) { return std::to_string(n); }
+
+// A clone without `git lfs pull` holds small text files in place of the real ones: the
+// scene, its buffers and its images are each checked for this first line.
+inline constexpr char kLfsPointer[] = "version https://git-lfs.github.com/spec/v1";
+inline const std::string kLfsAdvice = "run `git lfs pull` in its repository (or download the real file)";
+
+inline bool is_lfs_pointer(const unsigned char* bytes, std::size_t size) {
+  const std::size_t n = sizeof kLfsPointer - 1;
+  return size >= n && std::memcmp(bytes, kLfsPointer, n) == 0;
+}
 
 // "needs N bytes, has M", or the overflow that prevents saying N.
 inline std::string need_text(bool overflowed, std::uint64_t needed, std::uint64_t has) {

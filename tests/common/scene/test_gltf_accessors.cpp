@@ -198,3 +198,8 @@ TEST_CASE("a Git LFS pointer in place of an external buffer is named as one", "[
       fixture("lfs_buffer.gltf"),
       {"lfs_buffer.gltf:", "buffers[0].uri 'lfs_buffer.bin' is a Git LFS pointer", "git lfs pull"});
 }
+
+TEST_CASE("a Git LFS pointer in place of an image file is named as one", "[gltf][loader][texture]") {
+  require_bad_scene(fixture("tex_lfs.gltf"), {"tex_lfs.gltf:", "images[0]", "is a Git LFS pointer, not the image itself",
+                                              "git lfs pull"});
+}

@@ -182,9 +182,14 @@ TEST_CASE("textures: a used image that is missing, damaged, not PNG or JPEG, or 
   require_bad_scene(fixture("tex_malformed.gltf"), {"images[0]", "baseColorTexture", "truncated PNG"});
   require_bad_scene(fixture("tex_not_png.gltf"), {"images[0]", "neither a PNG nor a JPEG"});
   require_bad_scene(fixture("tex_truncated.glb"), {"images[0]", "truncated PNG", "re-export"});
-  // Its chunks intact, its compressed data not: OpenImageIO's decoder says so (libpng
-  // prints a line of its own on stderr before).
+  // Its chunks intact, its compressed data not: OpenImageIO's decoder says so. libpng's
+  // own line on stderr is kept out: the program says one line (the contract's errors).
   require_bad_scene(fixture("tex_bad_deflate.glb"), {"images[0]", "cannot be decoded"});
+  const std::filesystem::path run_dir = pt_test::scratch_dir("pt_textures_run");
+  pt_test::Run r = pt_test::run_program(
+      PT_STAGE1_BIN, "--backend cpu --out " + (run_dir / "bad.exr").string() + " --scene " + fixture("tex_bad_deflate.glb"),
+      "", run_dir);
+  pt_test::check_error(r, "stage1_raycast", pt::kExitBadScene, "cannot be decoded");
   require_bad_scene(fixture("tex_oversized.gltf"), {"images[0]", "16385 x 1", "16384 x 16384", "downscale"});
   // Two images of 16384 x 16384: 2 GiB of texels, refused before either is decoded.
   require_bad_scene(fixture("tex_total.glb"), {"2048 MiB", "1024 MiB limit", "images[0]", "downscale"});

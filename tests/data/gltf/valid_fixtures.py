@@ -329,7 +329,12 @@ def textures():
     # an image in a file next to the scene; TEXCOORD_1 asked for (warned, TEXCOORD_0 read)
     with open(os.path.join(HERE, "tex_external.png"), "wb") as f:
         f.write(png(1, 1, [[10, 20, 30, 40]]))
+    # a Git LFS pointer in place of the image file (a clone without `git lfs pull`)
+    with open(os.path.join(HERE, "tex_lfs.png"), "w") as f:
+        f.write("version https://git-lfs.github.com/spec/v1\n"
+                "oid sha256:4d7a214614ab2935c943f9e0ff69d22eadbb8f32b1258daaa5e2ca24d17e2393\nsize 12345\n")
     for name, uri in (("tex_external.gltf", "tex_external.png"), ("tex_missing.gltf", "tex_missing.png"),
+                      ("tex_lfs.gltf", "tex_lfs.png"),
                       ("tex_outside.gltf", "../gltf/tex_external.png"),
                       ("tex_outside_encoded.gltf", "%2E%2E/gltf/tex_external.png")):
         g = Gltf()
