@@ -18,7 +18,7 @@ constexpr uint kCpuBaseFeatures = kFeatureTriangles | kFeatureDiffuse | kFeature
 constexpr uint kCpuFeatureGroups[] = {
     kFeatureSpheres | kFeatureSphereLights,  // bit 0: spheres
     kFeatureMirror | kFeatureGlass,          // bit 1: delta lobes
-    kFeatureConductor | kFeatureMixed | kFeatureTextures,  // bit 2: GGX, mixed materials, textures
+    kFeatureConductor | kFeatureMixed | kFeatureTextures | kFeatureAlphaMask,  // bit 2: GGX, mixed, textures
     kFeaturePointLights | kFeatureSky,       // bit 3: lights other than area lights
 };
 constexpr unsigned kCpuFeatureGroupCount = sizeof kCpuFeatureGroups / sizeof kCpuFeatureGroups[0];

@@ -79,7 +79,8 @@ const uint kFeatureSphereLights = 1u << 8u;
 const uint kFeaturePointLights = 1u << 9u;
 const uint kFeatureSky = 1u << 10u;
 const uint kFeatureTextures = 1u << 11u;        // textures or vertex colours (texture.glsl)
-const uint kFeatureAll = (1u << 12u) - 1u;
+const uint kFeatureAlphaMask = 1u << 12u;       // alphaMode MASK: holes rays pass (intersect.glsl)
+const uint kFeatureAll = (1u << 13u) - 1u;
 
 // Textures (common/kernel/texture.glsl, issue #19): what a sampler does at the edges and
 // between texels (glTF's sampler wrapS / wrapT and magFilter), and "no texture".
@@ -214,6 +215,10 @@ struct MaterialTextures {
   vec3 metallic_roughness_t;
   uint enabled;                // 1 in a scene's own entries; 0 in the neutral entries a
                                // backend binds for a scene without textures (nothing more is read)
+  float base_alpha;            // baseColorFactor's alpha (alphaMode MASK)
+  float alpha_cutoff;          // alphaMode MASK: alpha below this is a hole; 0: opaque
+  uint pad0;                   // unused
+  uint pad1;                   // unused
 };
 
 // What a triangle carries besides its corners, parallel to triangles[] (empty when the
@@ -257,7 +262,8 @@ static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParam
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);
 static_assert(offsetof(FrameParams, accel) == 136 && offsetof(FrameParams, sampler_kind) == 140);
 static_assert(sizeof(Texture) == 32);
-static_assert(sizeof(MaterialTextures) == 96 && offsetof(MaterialTextures, emissive_s) == 32);
+static_assert(sizeof(MaterialTextures) == 112 && offsetof(MaterialTextures, emissive_s) == 32);
+static_assert(offsetof(MaterialTextures, base_alpha) == 96);
 static_assert(offsetof(MaterialTextures, metallic_roughness_s) == 64 && offsetof(MaterialTextures, enabled) == 92);
 static_assert(sizeof(TriangleAttributes) == 80 && offsetof(TriangleAttributes, uv2) == 16);
 static_assert(offsetof(TriangleAttributes, color0) == 32 && offsetof(TriangleAttributes, color2) == 64);

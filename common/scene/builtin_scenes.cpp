@@ -32,17 +32,19 @@ uint cornell_room(Scene& s) {
 
 // The back wall of cornell_room (its triangles 4 and 5) made textured: a 4 x 4 checkerboard
 // of sRGB white and grey repeated twice each way, bilinear, times vertex colours that shade
-// its corners pink, green and blue (texture.glsl).
-void add_textured_back_wall(Scene& s) {
+// its corners pink, green and blue (texture.glsl). With `holes` the wall's alpha is masked
+// (alphaMode MASK, cutoff 0.5) and the grey squares (alpha 0.25) are holes in it.
+void add_textured_back_wall(Scene& s, bool holes) {
   uint wall = s.add_material(make_diffuse(glm::vec3(0.73f)));
   s.material_textures.assign(s.materials.size(), no_material_textures());
   s.triangle_attributes.assign(s.triangles.size(), no_triangle_attributes());
-  const uint white = 0xffffffffu, grey = 0xff808080u;
+  const uint white = 0xffffffffu, grey = holes ? 0x40808080u : 0xff808080u;
   s.textures.push_back(Texture{uint(s.texels.size()), 4u, 4u, kWrapRepeat, kWrapRepeat, kFilterLinear, grey, white});
   for (uint y = 0; y < 4; y++) {
     for (uint x = 0; x < 4; x++) s.texels.push_back((x + y) % 2 ? grey : white);
   }
   s.material_textures[wall].base_color = uint(s.textures.size() - 1);
+  if (holes) s.material_textures[wall].alpha_cutoff = 0.5f;
   // Corners (-1,-1) (1,-1) (1,1) (-1,1) of the wall, as add_room's quad: triangles 012, 023.
   const glm::vec2 uv[4] = {{0, 2}, {2, 2}, {2, 0}, {0, 0}};
   const glm::vec4 color[4] = {{1.0f, 0.8f, 0.8f, 1.0f}, {0.8f, 1.0f, 0.8f, 1.0f}, {0.8f, 0.8f, 1.0f, 1.0f}, glm::vec4(1.0f)};
@@ -87,9 +89,9 @@ Scene cornell_glass() {
 
 // Every feature the renderer models in one room (issue "model only what a scene
 // requires": the general kernel's own scene): triangles and spheres; diffuse, mirror,
-// GGX, glass and mixed materials; a textured back wall with vertex colours; emissive
-// triangles, an emissive sphere, a point light and a spot light (render it with --sky for
-// the last feature).
+// GGX, glass and mixed materials; a textured back wall with vertex colours and holes (an
+// alpha mask); emissive triangles, an emissive sphere, a point light and a spot light
+// (render it with --sky for the last feature).
 Scene every_feature() {
   Scene s;
   cornell_room(s);
@@ -98,7 +100,7 @@ Scene every_feature() {
   s.add_sphere({-0.5f, -0.75f, 0.5f}, 0.25f, s.add_material(make_glass(glm::vec3(1.0f), 1.5f)));
   s.add_sphere({0.5f, 0.1f, -0.5f}, 0.2f, s.add_material(make_metal(glm::vec3(0.9f), 0.0f)));
   s.add_sphere({0.0f, 0.6f, 0.3f}, 0.05f, s.add_material(make_diffuse(glm::vec3(0.0f), {20.0f, 20.0f, 30.0f})));
-  add_textured_back_wall(s);
+  add_textured_back_wall(s, true);
   s.point_lights.push_back(make_point_light({0.6f, 0.8f, 0.6f}, {0.3f, 0.3f, 0.2f}));
   s.point_lights.push_back(make_spot_light({-0.6f, 0.9f, -0.6f}, {0.0f, -1.0f, 0.0f}, {0.4f, 0.35f, 0.3f}, 0.3f, 0.5f));
   return s;

@@ -243,10 +243,12 @@ class SceneBuilder {
                       " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
     }
     uint material = material_index(prim.material);
-    // TEXCOORD_0 where the material has a texture, COLOR_0 where the primitive has one.
+    // TEXCOORD_0 where the material has a texture, COLOR_0 where the primitive has one;
+    // the attributes too where the material has an alpha mask.
     const MaterialTextures& mt = material_textures_[material];
     const bool textured =
         mt.base_color != kNoTexture || mt.emissive != kNoTexture || mt.metallic_roughness != kNoTexture;
+    const bool masked = mt.alpha_cutoff > 0.0f;
     std::vector<glm::vec2> uv;
     std::vector<glm::vec4> colors;
     auto texcoord = prim.attributes.find("TEXCOORD_0"), color = prim.attributes.find("COLOR_0");
@@ -261,7 +263,7 @@ class SceneBuilder {
                                  "accessors[" + std::to_string(color->second) + "] (COLOR_0 of " + where + ")");
     }
     // The attributes start with the first triangle that needs them (those before get the defaults).
-    if ((textured || !colors.empty()) && !attributes_on_) {
+    if ((textured || masked || !colors.empty()) && !attributes_on_) {
       attributes_.assign(scene_.triangles.size(), no_triangle_attributes());
       attributes_on_ = true;
     }

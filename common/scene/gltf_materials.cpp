@@ -56,7 +56,8 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
   float t = checked_float(file, transmission,
                           where + ".extensions.KHR_materials_transmission.transmissionFactor", 0.0, 1.0);
   float eta = checked_float(file, ior, where + ".extensions.KHR_materials_ior.ior", 1.0);
-  if (m.alphaMode != "OPAQUE")
+  // MASK cuts holes (gltf_textures.cpp reads its cutoff; intersect.glsl cut_out).
+  if (m.alphaMode != "OPAQUE" && m.alphaMode != "MASK")
     warn_once(file + ": scene uses alphaMode " + m.alphaMode + "; surfaces are drawn opaque");
   return make_gltf_material(base, metallic, roughness, t, eta, emission, m.doubleSided);
 }

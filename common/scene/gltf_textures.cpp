@@ -333,6 +333,12 @@ MaterialTextures TextureBuilder::material_textures(int material) {
   // The factors, checked by convert_material (gltf_materials.cpp) already.
   t.metallic_factor = float(pbr.metallicFactor);
   t.roughness_factor = float(pbr.roughnessFactor);
+  if (m.alphaMode == "MASK") {  // alpha below the cutoff is a hole (intersect.glsl cut_out)
+    t.alpha_cutoff = checked_float(file_, m.alphaCutoff, where + ".alphaCutoff", 0.0);
+    t.base_alpha = pbr.baseColorFactor.size() == 4
+                       ? checked_float(file_, pbr.baseColorFactor[3], where + ".pbrMetallicRoughness.baseColorFactor[3]", 0.0, 1.0)
+                       : 1.0f;
+  }
   if (m.normalTexture.index >= 0) {
     warn_once(file_ + ": scene has normal textures; they are not modelled (the geometric normal is used)");
   }

@@ -315,6 +315,7 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
   for (const Triangle& t : scene.triangles) add_textured(t.material);
   for (const Sphere& s : scene.spheres) add_material(scene.materials[s.material]);
   if (uses_textures(scene)) mask |= kFeatureTextures;
+  if (uses_alpha_mask(scene)) mask |= kFeatureAlphaMask;
   for (const Light& l : scene.lights) {
     if (l.kind == kLightTriangle) mask |= kFeatureTriangleLights;
     if (l.kind == kLightSphere) mask |= kFeatureSphereLights;
@@ -329,10 +330,11 @@ std::string feature_names(uint mask) {
     uint bit;
     const char* name;
   };
-  const Name groups[3][6] = {
+  const Name groups[3][7] = {
       {{kFeatureTriangles, "triangles"}, {kFeatureSpheres, "spheres"}},
       {{kFeatureDiffuse, "diffuse"}, {kFeatureMirror, "mirror"}, {kFeatureConductor, "GGX conductor"},
-       {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureTextures, "textures"}},
+       {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureTextures, "textures"},
+       {kFeatureAlphaMask, "alpha masks"}},
       {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
        {kFeaturePointLights, "punctual lights"}, {kFeatureSky, "sky"}}};
   std::string s;
@@ -358,9 +360,17 @@ bool uses_textures(const Scene& scene) {
   return !scene.material_textures.empty() && !scene.triangle_attributes.empty();
 }
 
+bool uses_alpha_mask(const Scene& scene) {
+  if (!uses_textures(scene)) return false;
+  for (const MaterialTextures& mt : scene.material_textures) {
+    if (mt.alpha_cutoff > 0.0f) return true;
+  }
+  return false;
+}
+
 MaterialTextures no_material_textures() {
   const glm::vec3 s(1.0f, 0.0f, 0.0f), t(0.0f, 1.0f, 0.0f);  // the identity transform
-  return MaterialTextures{s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1u};
+  return MaterialTextures{s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1u, 1.0f, 0.0f, 0u, 0u};
 }
 
 std::vector<MaterialTextures> neutral_material_textures(std::size_t materials) {

@@ -138,6 +138,8 @@ bool is_emissive(const Material& m);
 bool uses_textures(const Scene& scene);
 // The textures of a material that has none: every slot kNoTexture, identity transforms.
 MaterialTextures no_material_textures();
+// Whether a material of the scene has alphaMode MASK (kFeatureAlphaMask).
+bool uses_alpha_mask(const Scene& scene);
 // What a backend binds as material_textures[] for a scene without textures whose kernel
 // has texture code (a CPU variant, --all-features): entries that read nothing (enabled 0).
 std::vector<MaterialTextures> neutral_material_textures(std::size_t materials);

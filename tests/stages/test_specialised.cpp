@@ -37,6 +37,7 @@ const Case kCases[] = {
     {PT_SOURCE_DIR "/scenes/glossy_glass.gltf", glm::vec3(0.2f)},
     {"mixed", glm::vec3(0.0f)},  // the Cornell box with mixed materials, below
     {PT_SOURCE_DIR "/tests/data/gltf/tex_seed.glb", glm::vec3(0.3f)},  // textures, vertex colours
+    {PT_SOURCE_DIR "/tests/data/gltf/tex_mask.gltf", glm::vec3(0.3f)},  // alpha masks
 };
 
 Scene load_case(const Case& c) {

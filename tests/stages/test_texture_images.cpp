@@ -279,3 +279,46 @@ TEST_CASE("textures: light sampling weighs a point on an emitter by its emissive
     check_scene(kernels, scene, want, settings(size, size, 1024, seed += 100));
   }
 }
+
+TEST_CASE("alpha masks: a masked plane's holes show the sky behind, a fully masked occluder is not there, in every stage",
+          "[texture][alpha_mask][statistical]") {
+  // tests/data/gltf/tex_mask.gltf: the sky plane whose texels' alpha is a checkerboard of 0
+  // and 1 (cutoff 0.5), behind a quad at z = 0.5 whose alpha 0.2 is below its cutoff 0.25
+  // everywhere. Camera rays pass the occluder and the plane's holes; the plane's bounce and
+  // shadow rays pass the occluder: the plane is factor x texel x sky as without it, its
+  // holes the sky.
+  const Scene scene = load_gltf(PT_SOURCE_DIR "/tests/data/gltf/tex_mask.gltf");
+  REQUIRE((scene_feature_mask(scene, glm::vec3(kSky)) & kFeatureAlphaMask) != 0u);
+  const Texture& t = scene.textures.at(0);
+  const glm::dvec3 factor(scene.materials.at(0).base_color);
+  auto image = [&](bool shaded) {
+    return expected_image(16, 16, [&](double x0, double y0, double x1, double y1) {
+      double x = 0.5 * (x0 + x1), y = 0.5 * (y0 + y1);
+      uint tx = uint(std::floor(4.0 * (x + 1.0))) % 4u, ty = uint(std::floor(4.0 * (1.0 - y))) % 4u;
+      uint v = scene.texels[t.offset + ty * t.width + tx];
+      if ((v >> 24) == 0u) return kSky;  // a hole
+      return factor * srgb_texel(v) * (shaded ? kSky : glm::dvec3(1.0));
+    });
+  };
+  std::uint32_t seed = test_seed(19600);
+  RenderSettings s = settings(16, 16, 32, seed);
+  s.sky = glm::vec3(kSky);
+  {
+    INFO("stage1_raycast");
+    s.seed = seed;
+    check_scene(stage1::kernels(), scene, image(false), s, kRounding);
+  }
+  for (const StageKernels& kernels : path_tracing_stages()) {
+    INFO(kernels.name);
+    s.seed = seed += 100;
+    check_scene(kernels, scene, image(true), s, kRounding);
+  }
+  // The control: with the occluder opaque the camera sees it instead (the test can fail).
+  Scene opaque = scene;
+  for (MaterialTextures& mt : opaque.material_textures) {
+    if (mt.base_color == kNoTexture) mt.alpha_cutoff = 0.0f;
+  }
+  RenderResult r = render_on_test_backend(stage2::kernels(), opaque, s);
+  glm::dvec3 want = image(true)[0], got = r.film.mean(0, 0);
+  CHECK(std::abs(got.x - want.x) > 0.1 * want.x);
+}

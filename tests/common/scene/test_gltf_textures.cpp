@@ -286,3 +286,21 @@ TEST_CASE("textures: decode_image reads a PNG from memory and names a damaged on
   CHECK(code == kExitBadScene);
   CHECK_THAT(message, Catch::Contains("images[7]"));
 }
+
+TEST_CASE("alphaMode MASK keeps its cutoff and the base colour's alpha; BLEND is drawn opaque and said once",
+          "[texture][loader][alpha_mask]") {
+  pt_test::StderrCapture capture;
+  Scene scene = load("tex_mask.gltf");
+  std::string err = capture.text();
+  INFO("stderr: " << err);
+  REQUIRE(scene.material_textures.size() == 3);
+  CHECK(scene.material_textures[0].alpha_cutoff == 0.5f);  // glTF's default cutoff
+  CHECK(scene.material_textures[0].base_alpha == 1.0f);
+  CHECK(scene.material_textures[1].alpha_cutoff == 0.25f);
+  CHECK(scene.material_textures[1].base_alpha == 0.2f);
+  CHECK(scene.material_textures[2].alpha_cutoff == 0.0f);  // BLEND: opaque
+  CHECK(pt_test::occurrences(err, "alphaMode BLEND") == 1);
+  CHECK(pt_test::occurrences(err, "alphaMode MASK") == 0);
+  CHECK((scene_feature_mask(scene, glm::vec3(0.0f)) & kFeatureAlphaMask) != 0u);
+  CHECK((scene_feature_mask(load("tex_sky_plane.gltf"), glm::vec3(0.0f)) & kFeatureAlphaMask) == 0u);
+}

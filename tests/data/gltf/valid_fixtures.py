@@ -423,3 +423,24 @@ def textures():
     plane = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
     g.node(mesh=textured_quad(g, uv=((0, 2), (2, 2), (2, 0), (0, 0)), points=plane))
     g.write_gltf("tex_sky_plane.gltf")
+    # the sky plane with holes (alphaMode MASK, cutoff 0.5): its texels' alpha a checkerboard
+    # of 0 and 255; before it at z = 0.5 a 6 x 6 quad whose MASK material has alpha 0.2 and no
+    # texture (a hole everywhere); a BLEND quad out of the view (drawn opaque, warned about)
+    g = Gltf()
+    rows = [sum(([(37 * i + 11) % 256, (91 * i + 200) % 256, (53 * i + 7) % 256, 255 * ((i + y) % 2)]
+                 for i in range(4 * y, 4 * y + 4)), []) for y in range(4)]
+    g.doc["images"] = [{"uri": data_uri(png(4, 4, rows))}]
+    g.doc["samplers"] = [{"magFilter": 9728}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    g.doc["materials"] = [
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 1, 1], "baseColorTexture": {"index": 0},
+                                  "metallicFactor": 0}, "alphaMode": "MASK"},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 0.2], "metallicFactor": 0},
+         "alphaMode": "MASK", "alphaCutoff": 0.25},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 0.2], "metallicFactor": 0}, "alphaMode": "BLEND"}]
+    g.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}]
+    g.node(translation=[0, 0, 1], camera=0)
+    g.node(mesh=textured_quad(g, uv=((0, 2), (2, 2), (2, 0), (0, 0)), points=plane))
+    g.node(mesh=textured_quad(g, material=1, points=[(-3, -3, 0.5), (3, -3, 0.5), (3, 3, 0.5), (-3, 3, 0.5)]))
+    g.node(mesh=textured_quad(g, material=2, points=[(10, 0, 0), (11, 0, 0), (11, 1, 0), (10, 1, 0)]))
+    g.write_gltf("tex_mask.gltf")
