@@ -170,8 +170,9 @@ Hit intersect_opaque(Ray ray, float t_max) {
 // alphaCutoff the surface is not there, for every ray. Whether the hit point (b1, b2) of
 // triangle `tri` is such a hole.
 bool cut_out(uint tri, float b1, float b2) {
-  uint material = triangle_at(tri).material;
-  MaterialTextures mt = material_textures[material];
+  Triangle t = triangle_at(tri);
+  if ((t.flags & kTriangleMasked) == 0u) return false;
+  MaterialTextures mt = material_textures[t.material];
   if (mt.enabled == 0u || !(mt.alpha_cutoff > 0.0f)) return false;
   TriangleAttributes a = triangle_attributes[tri];
   float alpha = mt.base_alpha * triangle_color(a, b1, b2).w;

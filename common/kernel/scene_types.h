@@ -109,8 +109,12 @@ struct Triangle {
   vec3 p1;        // vertex 1
   uint light;     // index into lights[], or kNoLight
   vec3 p2;        // vertex 2; counter-clockwise seen from the front
-  uint pad;       // unused
+  uint flags;     // kTriangle* bits
 };
+
+// Triangle.flags: its material has an alpha mask (alphaMode MASK), so a ray's hit on it is
+// checked for a hole (intersect.glsl cut_out); other triangles are never looked up.
+const uint kTriangleMasked = 1u;
 
 struct Sphere {
   vec3 center;    // centre (world space)

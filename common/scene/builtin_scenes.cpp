@@ -55,6 +55,7 @@ void add_textured_back_wall(Scene& s, bool holes) {
     s.triangle_attributes[4 + t] = TriangleAttributes{uv[c[0]], uv[c[1]], uv[c[2]], glm::vec2(0.0f),
                                                       color[c[0]], color[c[1]], color[c[2]]};
   }
+  mark_alpha_masked(s);
 }
 
 void short_box(Scene& s, uint material) { add_box(s, {0.33f, -0.7f, 0.3f}, {0.3f, 0.3f, 0.3f}, -0.31f, material); }

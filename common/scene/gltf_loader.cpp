@@ -104,6 +104,7 @@ class SceneBuilder {
       scene_.triangle_attributes = std::move(attributes_);
       scene_.material_textures = material_textures_;
       textures_.decode_into(scene_);
+      mark_alpha_masked(scene_);
     }
     return std::move(scene_);
   }

@@ -360,10 +360,18 @@ bool uses_textures(const Scene& scene) {
   return !scene.material_textures.empty() && !scene.triangle_attributes.empty();
 }
 
+void mark_alpha_masked(Scene& scene) {
+  for (std::size_t i = 0; i < scene.triangles.size(); i++) {
+    Triangle& t = scene.triangles[i];
+    bool masked = uses_textures(scene) && scene.material_textures[t.material].alpha_cutoff > 0.0f;
+    t.flags = masked ? t.flags | kTriangleMasked : t.flags & ~kTriangleMasked;
+  }
+}
+
 bool uses_alpha_mask(const Scene& scene) {
   if (!uses_textures(scene)) return false;
-  for (const MaterialTextures& mt : scene.material_textures) {
-    if (mt.alpha_cutoff > 0.0f) return true;
+  for (const Triangle& t : scene.triangles) {
+    if (t.flags & kTriangleMasked) return true;
   }
   return false;
 }

@@ -138,7 +138,11 @@ bool is_emissive(const Material& m);
 bool uses_textures(const Scene& scene);
 // The textures of a material that has none: every slot kNoTexture, identity transforms.
 MaterialTextures no_material_textures();
-// Whether a material of the scene has alphaMode MASK (kFeatureAlphaMask).
+// Flags the triangles whose material has an alpha mask (alphaMode MASK: alpha_cutoff > 0)
+// with kTriangleMasked, and clears the flag of the others: after the scene's materials and
+// textures are set (the glTF loader and the built-in scenes call it). Whether a triangle
+// is flagged (kFeatureAlphaMask).
+void mark_alpha_masked(Scene& scene);
 bool uses_alpha_mask(const Scene& scene);
 // What a backend binds as material_textures[] for a scene without textures whose kernel
 // has texture code (a CPU variant, --all-features): entries that read nothing (enabled 0).
