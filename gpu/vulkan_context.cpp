@@ -86,6 +86,14 @@ VulkanContext::VulkanContext(const std::string& device_request) {
 
 namespace {
 
+// The renderer as every instance it makes names it: Vulkan 1.1.
+VkApplicationInfo application_info() {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "staged path tracer";
+  app.apiVersion = VK_API_VERSION_1_1;
+  return app;
+}
+
 // Opens libvulkan.so.1 (volk), or throws.
 void open_loader() {
   if (fault().no_loader || volkInitialize() != VK_SUCCESS) {
@@ -99,9 +107,7 @@ void throw_no_device() { throw Error(kExitNoDevice, std::string("no Vulkan devic
 
 std::vector<DeviceInfo> list_devices() {
   open_loader();
-  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-  app.pApplicationName = "staged path tracer";
-  app.apiVersion = VK_API_VERSION_1_1;
+  VkApplicationInfo app = application_info();
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
   VkInstance instance = VK_NULL_HANDLE;
@@ -131,9 +137,7 @@ std::vector<DeviceInfo> list_devices() {
 void VulkanContext::create(const std::string& device_request) {
   open_loader();
   // [excerpt instance] (docs/vulkan_backend.md)
-  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-  app.pApplicationName = "staged path tracer";
-  app.apiVersion = VK_API_VERSION_1_1;
+  VkApplicationInfo app = application_info();
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
   const char* layer = "VK_LAYER_KHRONOS_validation";
