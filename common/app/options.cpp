@@ -60,8 +60,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.footer(footer);
   app.get_formatter()->column_width(30);
   app.add_option("--scene", o.scene, "glTF 2.0 file (.gltf, .glb) or builtin:NAME")->capture_default_str();
-  app.add_option("--width", o.render.width, "image width in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
-  app.add_option("--height", o.render.height, "image height in pixels")->capture_default_str()->check(CLI::Range(1, 65536));
+  app.add_option("--width", o.render.width, "image width in pixels (given alone: a glTF camera's aspectRatio sets the height)")->capture_default_str()->check(CLI::Range(1, 65536));
+  app.add_option("--height", o.render.height, "image height in pixels (given alone: a glTF camera's aspectRatio sets the width)")->capture_default_str()->check(CLI::Range(1, 65536));
   app.add_option("--spp", o.render.spp, "samples per pixel")->capture_default_str()->check(CLI::Range(std::uint64_t(1), std::uint64_t(0xffffffffu)));
   std::string samples;
   app.add_option("--samples", samples,

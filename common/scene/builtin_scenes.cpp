@@ -178,7 +178,7 @@ const std::vector<Builtin>& registry() {
        [] { return analytic::make_mirror({}); }},
       {{"glass_slab", "a glass slab (ior 1.5) before an emitter: Le (1 - R) / (1 + R)"},
        [] { return analytic::make_glass_slab({}); }},
-      {{"point_floor", "a diffuse floor under a point light: albedo I cos / (pi d^2) (stage4)"},
+      {{"point_floor", "a diffuse floor under a point light: albedo I cos / (pi d^2) (stages 4, 5)"},
        [] { return analytic::make_point_floor({}); }},
       {{"spot_floor", "builtin:point_floor with a spot light pointing down (cones 0.4, 1.2 rad): times its falloff"},
        [] {
@@ -192,7 +192,7 @@ const std::vector<Builtin>& registry() {
          a.kind = kPunctualDirectional;
          return analytic::make_point_floor(a);
        }},
-      {{"point_in_sphere", "inside a diffuse sphere with a point light of intensity pi at its centre: 1 (stage4)"},
+      {{"point_in_sphere", "inside a diffuse sphere with a point light of intensity pi at its centre: 1 (stages 4, 5)"},
        [] { return analytic::make_point_in_sphere({}); }},
   };
   return list;
