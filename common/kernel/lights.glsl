@@ -190,6 +190,18 @@ LightSample sample_triangle_light_by_solid_angle(uint index, vec3 p, vec2 u, flo
   return LightSample(wi, dist, triangle_emission_at(index, p + dist * wi) / pdf, pdf);
 }
 
+// A light sample on a triangle with an alpha mask (alphaMode MASK) that lands in one of
+// its holes finds no emitter there (intersect.glsl cut_out): no light, while the pdf of
+// every other point stays that of the whole triangle, as the BSDF's rays that meet the
+// triangle outside its holes are weighed (light_pdf). Unbiased: the holes emit nothing.
+LightSample unless_in_hole(uint index, vec3 p, LightSample ls) {
+  if (!has_feature(kFeatureAlphaMask) || (triangle_at(index).flags & kTriangleMasked) == 0u) return ls;
+  if (!(ls.dist > 0.0f)) return ls;
+  vec2 b = barycentric_at(index, p + ls.dist * ls.wi);
+  if (cut_out(index, b.x, b.y)) return no_light();
+  return ls;
+}
+
 // One light sample for the shading point p with normal n (on the side light may come from),
 // its triangles placed by `triangles_by` (kTriangleByArea or kTriangleBySolidAngle).
 // One 2-D sample does both steps: its first coordinate picks the light and, rescaled to
@@ -208,8 +220,10 @@ LightSample sample_light_by(vec3 p, vec3 n, uint triangles_by) {
   u2.x = remap_within(u, lo, lights[index].cumulative - lo);
   float pick = (1.0f - sky_pick) * light.pick;
   if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.kind == kLightTriangle) {
-    if (triangles_by == kTriangleBySolidAngle) return sample_triangle_light_by_solid_angle(light.index, p, u2, pick);
-    return sample_triangle_light(light.index, p, u2, pick);
+    if (triangles_by == kTriangleBySolidAngle) {
+      return unless_in_hole(light.index, p, sample_triangle_light_by_solid_angle(light.index, p, u2, pick));
+    }
+    return unless_in_hole(light.index, p, sample_triangle_light(light.index, p, u2, pick));
   }
   if (!has_feature(kFeaturePointLights) || light.kind == kLightSphere) {
     return sample_sphere_light(light.index, p, u2, pick);

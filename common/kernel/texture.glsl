@@ -85,10 +85,9 @@ vec3 triangle_emission(uint tri, float b1, float b2) {
   return vec3(materials[material].emission) * vec3(e.x, e.y, e.z);
 }
 
-// The same at the point y on the triangle's plane (a light sample drawn by solid angle):
-// its barycentric weights from the areas of the sub-triangles.
-vec3 triangle_emission_at(uint tri, vec3 y) {
-  if (!has_feature(kFeatureTextures)) return vec3(materials[triangle_at(tri).material].emission);
+// The barycentric weights (b1 of p1, b2 of p2) of the point y on the plane of triangle
+// `tri`, from the areas of the sub-triangles.
+vec2 barycentric_at(uint tri, vec3 y) {
   Triangle t = triangle_at(tri);
   vec3 p0 = t.p0;
   vec3 e1 = vec3(t.p1) - p0;
@@ -96,7 +95,14 @@ vec3 triangle_emission_at(uint tri, vec3 y) {
   vec3 n = cross(e1, e2);
   vec3 d = y - p0;
   float inv = 1.0f / dot(n, n);
-  return triangle_emission(tri, dot(cross(d, e2), n) * inv, dot(cross(e1, d), n) * inv);
+  return vec2(dot(cross(d, e2), n) * inv, dot(cross(e1, d), n) * inv);
+}
+
+// The same at the point y on the triangle's plane (a light sample drawn by solid angle).
+vec3 triangle_emission_at(uint tri, vec3 y) {
+  if (!has_feature(kFeatureTextures)) return vec3(materials[triangle_at(tri).material].emission);
+  vec2 b = barycentric_at(tri, y);
+  return triangle_emission(tri, b.x, b.y);
 }
 
 #endif  // PT_TEXTURE_GLSL

@@ -229,28 +229,38 @@ TEST_CASE("textures: COLOR_0 multiplies the base colour", "[texture][statistical
   }
 }
 
-TEST_CASE("textures: light sampling weighs a point on an emitter by its emissive texture, in stages 2 to 5",
-          "[texture][statistical]") {
-  // The floor under the square light of builtin:floor_light, the light's emissive texture
-  // two texels (nearest, clamped) across it: its x < 0 half emits Le x texel 0, its x > 0
-  // half Le x texel 1. Each half is a uniform polygon: Lambert's formula for each.
+namespace {
+
+// The floor under the square light of builtin:floor_light, the light's emissive texture
+// two texels (nearest, clamped) across it: its x < 0 half emits Le x texel 0, its x > 0
+// half Le x texel 1. Each half is a uniform polygon: Lambert's formula for each. With
+// `left_hole` the light has an alpha mask and texel 0 alpha 0: its x < 0 half is a hole,
+// which neither the BSDF's rays (stages 2, 3) nor the light samples (stages 4, 5) may find.
+void check_light_halves(bool left_hole, std::uint32_t seed) {
   analytic::FloorLightScene a;
   Scene scene = analytic::make_floor_light(a);
-  const uint t0 = rgba(255, 200, 100, 255), t1 = rgba(30, 60, 255, 255);
+  const uint t0 = rgba(255, 200, 100, left_hole ? 0 : 255), t1 = rgba(30, 60, 255, 255);
   scene.material_textures.assign(scene.materials.size(), no_material_textures());
   scene.triangle_attributes.assign(scene.triangles.size(), no_triangle_attributes());
   scene.textures.push_back(Texture{0u, 2u, 1u, kWrapClampToEdge, kWrapClampToEdge, kFilterNearest, 0u, 0u});
   scene.texels = {t0, t1};
   const uint light = scene.triangles.back().material;
   scene.material_textures[light].emissive = 0u;
+  if (left_hole) {
+    scene.material_textures[light].base_color = 0u;  // its alpha: the mask
+    scene.material_textures[light].alpha_cutoff = 0.5f;
+  }
   // The light's triangles (-l,-l) (l,-l) (l,l) and (-l,-l) (l,l) (-l,l) in x, z: u = (x / l + 1) / 2.
   std::size_t n = scene.triangles.size();
   scene.triangle_attributes[n - 2].uv0 = {0, 0}, scene.triangle_attributes[n - 2].uv1 = {1, 0};
   scene.triangle_attributes[n - 2].uv2 = {1, 1};
   scene.triangle_attributes[n - 1].uv0 = {0, 0}, scene.triangle_attributes[n - 1].uv1 = {1, 1};
   scene.triangle_attributes[n - 1].uv2 = {0, 1};
+  mark_alpha_masked(scene);
   build_light_table(scene);
-  const glm::dvec3 e0 = glm::dvec3(a.emission) * srgb_texel(t0), e1 = glm::dvec3(a.emission) * srgb_texel(t1);
+  REQUIRE(uses_alpha_mask(scene) == left_hole);
+  const glm::dvec3 e0 = left_hole ? glm::dvec3(0.0) : glm::dvec3(a.emission) * srgb_texel(t0);
+  const glm::dvec3 e1 = glm::dvec3(a.emission) * srgb_texel(t1);
   struct Halves {
     analytic::FloorLightScene a;
     glm::dvec3 e0, e1;
@@ -273,11 +283,22 @@ TEST_CASE("textures: light sampling weighs a point on an emitter by its emissive
     }
     return v;
   });
-  std::uint32_t seed = test_seed(19500);
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
     check_scene(kernels, scene, want, settings(size, size, 1024, seed += 100));
   }
+}
+
+}  // namespace
+
+TEST_CASE("textures: light sampling weighs a point on an emitter by its emissive texture, in stages 2 to 5",
+          "[texture][statistical]") {
+  check_light_halves(false, test_seed(19500));
+}
+
+TEST_CASE("alpha masks: an emitter's holes emit nothing, for light samples and BSDF rays alike, in stages 2 to 5",
+          "[texture][alpha_mask][statistical]") {
+  check_light_halves(true, test_seed(19700));
 }
 
 TEST_CASE("alpha masks: a masked plane's holes show the sky behind, a fully masked occluder is not there, in every stage",
