@@ -11,6 +11,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "common/base/error.h"
+#include "common/base/srgb.h"
 
 namespace pt {
 
@@ -36,12 +37,9 @@ void check_usable(const Film& f, const std::string& name) {
   }
 }
 
-// The sRGB-encoded grey level g (0 to 1) as the linear value that OutputFile's PNG writer
-// turns back into the code round(255 g): the picture's colours are linear in |z|.
-float srgb_to_linear(double g) {
-  g = std::clamp(g, 0.0, 1.0);
-  return float(g <= 0.04045 ? g / 12.92 : std::pow((g + 0.055) / 1.055, 2.4));
-}
+// The sRGB-encoded grey level g (0 to 1, clamped) as the linear value that OutputFile's PNG
+// writer turns back into the code round(255 g): the picture's colours are linear in |z|.
+float grey_level(double g) { return float(srgb_to_linear(std::clamp(g, 0.0, 1.0))); }
 
 }  // namespace
 
@@ -191,7 +189,7 @@ std::vector<float> zmap_picture(const Comparison& c) {
         p[0] = p[1] = 1.0f;  // yellow: the outline of a region over the threshold
         continue;
       }
-      const float level = srgb_to_linear(std::fabs(double(c.pixel_z[i])) / 4.0);
+      const float level = grey_level(std::fabs(double(c.pixel_z[i])) / 4.0);
       (c.pixel_z[i] > 0.0f ? p[0] : p[2]) = level;
     }
   }

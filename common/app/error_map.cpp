@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/base/error.h"
+#include "common/base/srgb.h"
 
 namespace pt {
 
@@ -35,16 +36,6 @@ double error_map_white(const Film& film, double target_error) {
   return e > 0.0 && std::isfinite(e) ? 2.0 * e : 1.0;
 }
 
-namespace {
-
-// The linear value that encode_srgb8 turns into the code round(255 g): the map's grey
-// levels are then linear in the error.
-float srgb_to_linear(double g) {
-  return float(g <= 0.04045 ? g / 12.92 : std::pow((g + 0.055) / 1.055, 2.4));
-}
-
-}  // namespace
-
 void write_error_map(const OutputFile& file, const Film& film, double target_error, const ImageMetadata& meta) {
   std::vector<float> values = relative_error_values(film);
   bool png = file.path().size() >= 4 &&
@@ -53,7 +44,9 @@ void write_error_map(const OutputFile& file, const Film& film, double target_err
   double white = error_map_white(film, target_error);
   std::vector<float> rgb(values.size() * 3);
   for (std::size_t i = 0; i < values.size(); i++) {
-    float v = png ? srgb_to_linear(std::clamp(double(values[i]) / white, 0.0, 1.0)) : values[i];
+    // The linear value that encode_srgb8 turns into the code round(255 g): the map's grey
+    // levels are then linear in the error.
+    float v = png ? float(srgb_to_linear(std::clamp(double(values[i]) / white, 0.0, 1.0))) : values[i];
     rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = v;
   }
   // The image's description only: the map is a picture, not a part of the render to merge.

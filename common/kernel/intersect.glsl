@@ -165,69 +165,6 @@ Hit intersect_opaque(Ray ray, float t_max) {
   return best;
 }
 
-// glTF's alphaMode MASK (beyond the article; issue #19): where a masked material's alpha
-// (baseColorFactor's alpha x its base colour texture's alpha x COLOR_0's alpha) is below its
-// alphaCutoff the surface is not there, for every ray. Whether the hit point (b1, b2) of
-// triangle `tri` is such a hole.
-bool cut_out(uint tri, float b1, float b2) {
-  Triangle t = triangle_at(tri);
-  if ((t.flags & kTriangleMasked) == 0u) return false;
-  MaterialTextures mt = material_textures[t.material];
-  if (mt.enabled == 0u || !(mt.alpha_cutoff > 0.0f)) return false;
-  TriangleAttributes a = triangle_attributes[tri];
-  float alpha = mt.base_alpha * triangle_color(a, b1, b2).w;
-  if (mt.base_color != kNoTexture) {
-    vec2 uv = transform_uv(vec3(mt.base_color_s), vec3(mt.base_color_t), triangle_uv(a, b1, b2));
-    alpha *= texture_lookup(mt.base_color, uv, true).w;
-  }
-  return alpha < mt.alpha_cutoff;
-}
-
-// At most this many holes are passed along one ray (leaves of a tree seen edge on): beyond
-// them the surface counts as there.
-const uint kMaxCutOuts = 64u;
-
-// The nearest hit closer than t_max that is not in a hole of an alpha mask, or a hit of
-// kind kPrimNone. A hit in a hole is passed by tracing on from just beyond it (spawn_ray:
-// the same line, cleared of the surface), its distance added; scenes without alpha masks
-// have one search only, the masks' code not compiled in (has_feature).
-Hit intersect_scene(Ray ray, float t_max) {
-  Hit best = intersect_opaque(ray, t_max);
-  if (!has_feature(kFeatureAlphaMask)) return best;
-  for (uint i = 0u; i < kMaxCutOuts && best.kind == kPrimTriangle && cut_out(best.prim, best.b1, best.b2); i++) {
-    Triangle tri = triangle_at(best.prim);
-    vec3 p0 = tri.p0;
-    vec3 p = (1.0f - best.b1 - best.b2) * p0 + best.b1 * vec3(tri.p1) + best.b2 * vec3(tri.p2);
-    Ray beyond = spawn_ray(p, normalize(cross(vec3(tri.p1) - p0, vec3(tri.p2) - p0)), ray.dir);
-    float skipped = dot(beyond.origin - ray.origin, ray.dir);
-    if (!(skipped < t_max)) return Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
-    best = intersect_opaque(beyond, t_max - skipped);
-    if (best.kind == kPrimNone) return Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
-    best.t += skipped;
-  }
-  return best;
-}
-
-// Whether any triangle is hit closer than t_max: the answer nearest_triangle() gives, as the
-// backend finds it fastest (the BVH's any-hit walk, common/kernel/bvh.glsl, or the nearest
-// hit). Defined by the backend after this file, as nearest_triangle() is.
-bool occluded_triangles(Ray ray, RayShear rs, float t_max);
-
-// Whether anything is hit closer than t_max (shadow rays): intersect_scene(ray, t_max)
-// finds a hit exactly when this is true.
-bool occluded_scene(Ray ray, float t_max) {
-  if (has_feature(kFeatureAlphaMask)) return intersect_scene(ray, t_max).kind != kPrimNone;  // through holes
-  RayShear rs = make_ray_shear(ray.dir);
-  if (has_feature(kFeatureTriangles) && occluded_triangles(ray, rs, t_max)) return true;
-  if (has_feature(kFeatureSpheres)) {
-    Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
-    for (uint i = 0u; i < params.sphere_count; i++) {
-      if (hit_sphere(ray, i, none).kind != kPrimNone) return true;
-    }
-  }
-  return false;
-}
-
 // Surface.triangle of a point on a sphere.
 const uint kNoTriangle = 0xffffffffu;
 
@@ -258,6 +195,66 @@ Surface surface_at(Ray ray, Hit hit) {
   vec3 p = ray.origin + hit.t * ray.dir;
   vec3 n = normalize(p - center);
   return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.material, kNoTriangle, 0.0f, 0.0f);
+}
+
+// glTF's alphaMode MASK (beyond the article; issue #19): where a masked material's alpha
+// (baseColorFactor's alpha x its base colour texture's alpha x COLOR_0's alpha) is below its
+// alphaCutoff the surface is not there, for every ray. Whether the hit point (b1, b2) of
+// triangle `tri` is such a hole.
+bool cut_out(uint tri, float b1, float b2) {
+  Triangle t = triangle_at(tri);
+  if ((t.flags & kTriangleMasked) == 0u) return false;  // flagged: its material has a mask
+  MaterialTextures mt = material_textures[t.material];
+  TriangleAttributes a = triangle_attributes[tri];
+  float alpha = mt.base_alpha * triangle_color(a, b1, b2).w;
+  if (mt.base_color != kNoTexture) {
+    vec2 uv = transform_uv(vec3(mt.base_color_s), vec3(mt.base_color_t), triangle_uv(a, b1, b2));
+    alpha *= texture_lookup(mt.base_color, uv, true).w;
+  }
+  return alpha < mt.alpha_cutoff;
+}
+
+// At most this many holes are passed along one ray (leaves of a tree seen edge on): beyond
+// them the surface counts as there.
+const uint kMaxCutOuts = 64u;
+
+// The nearest hit closer than t_max that is not in a hole of an alpha mask, or a hit of
+// kind kPrimNone. A hit in a hole is passed by tracing on from just beyond it (spawn_ray:
+// the same line, cleared of the surface), its distance added; scenes without alpha masks
+// have one search only, the masks' code not compiled in (has_feature).
+Hit intersect_scene(Ray ray, float t_max) {
+  Hit best = intersect_opaque(ray, t_max);
+  if (!has_feature(kFeatureAlphaMask)) return best;
+  for (uint i = 0u; i < kMaxCutOuts && best.kind == kPrimTriangle && cut_out(best.prim, best.b1, best.b2); i++) {
+    Surface hole = surface_at(ray, best);
+    Ray beyond = spawn_ray(hole.p, hole.n, ray.dir);
+    float skipped = dot(beyond.origin - ray.origin, ray.dir);
+    if (!(skipped < t_max)) return Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+    best = intersect_opaque(beyond, t_max - skipped);
+    if (best.kind == kPrimNone) return Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+    best.t += skipped;
+  }
+  return best;
+}
+
+// Whether any triangle is hit closer than t_max: the answer nearest_triangle() gives, as the
+// backend finds it fastest (the BVH's any-hit walk, common/kernel/bvh.glsl, or the nearest
+// hit). Defined by the backend after this file, as nearest_triangle() is.
+bool occluded_triangles(Ray ray, RayShear rs, float t_max);
+
+// Whether anything is hit closer than t_max (shadow rays): intersect_scene(ray, t_max)
+// finds a hit exactly when this is true.
+bool occluded_scene(Ray ray, float t_max) {
+  if (has_feature(kFeatureAlphaMask)) return intersect_scene(ray, t_max).kind != kPrimNone;  // through holes
+  RayShear rs = make_ray_shear(ray.dir);
+  if (has_feature(kFeatureTriangles) && occluded_triangles(ray, rs, t_max)) return true;
+  if (has_feature(kFeatureSpheres)) {
+    Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
+    for (uint i = 0u; i < params.sphere_count; i++) {
+      if (hit_sphere(ray, i, none).kind != kPrimNone) return true;
+    }
+  }
+  return false;
 }
 
 #endif  // PT_INTERSECT_GLSL

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/base/error.h"
+#include "common/base/srgb.h"
 
 namespace pt {
 
@@ -171,9 +172,6 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
 
 namespace {
 float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-// The sRGB EOTF (IEC 61966-2-1), as texture.glsl decodes base colour and emissive texels.
-double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 // The mean linear RGB of a texture whose texels are sRGB: the emissive texture's share of a
 // light's power (what the texture averages to where its uv cover it evenly).
@@ -361,9 +359,9 @@ bool uses_textures(const Scene& scene) {
 }
 
 void mark_alpha_masked(Scene& scene) {
-  for (std::size_t i = 0; i < scene.triangles.size(); i++) {
-    Triangle& t = scene.triangles[i];
-    bool masked = uses_textures(scene) && scene.material_textures[t.material].alpha_cutoff > 0.0f;
+  const bool textured = uses_textures(scene);
+  for (Triangle& t : scene.triangles) {
+    bool masked = textured && scene.material_textures[t.material].alpha_cutoff > 0.0f;
     t.flags = masked ? t.flags | kTriangleMasked : t.flags & ~kTriangleMasked;
   }
 }

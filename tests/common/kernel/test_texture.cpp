@@ -10,6 +10,8 @@
 
 #include "common/scene/scene.h"
 #include "cpu/kernel_prelude.h"
+#include "common/base/srgb.h"
+#include "tests/support/texels.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
@@ -25,8 +27,7 @@ namespace kernel {
 namespace {
 
 using pt::uint;
-
-uint rgba(uint r, uint g, uint b, uint a) { return r | g << 8 | b << 16 | a << 24; }
+using pt_test::rgba;
 
 // One texture of the given texels (row 0 on top) bound alone, with its sampler.
 struct BoundTexture {
@@ -66,7 +67,7 @@ TEST_CASE("texture: sRGB texels decode by the exact sRGB EOTF", "[texture]") {
   CHECK(kernel::srgb_to_linear(1.0f) == 1.0f);
   // Every 8-bit value against the formula in double.
   for (int i = 0; i < 256; i++) {
-    double c = i / 255.0, want = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    double want = pt::srgb_to_linear(i / 255.0);
     CHECK(kernel::srgb_to_linear(float(i) / 255.0f) == Approx(want).epsilon(2e-6).margin(1e-9));
   }
   // A texel read as sRGB: colour decoded, alpha linear.
@@ -176,13 +177,12 @@ TEST_CASE("texture: the shaded material of a textured triangle", "[texture]") {
   kernel::material_textures = s.material_textures.data();
   kernel::textures = s.textures.data();
   kernel::texels = s.texels.data();
-  auto srgb = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
   // At corner 0 (uv (0.25, 0.25): texel (0, 0)); at the centroid (uv 5/12, 5/12: texel (0, 0)).
   for (float b : {0.0f, 1.0f / 3.0f}) {
     Material got = kernel::textured_material(0u, 0u, b, b);
     glm::dvec3 color = glm::dvec3(a.color0) * (1.0 - 2.0 * b) + glm::dvec3(a.color1) * double(b) +
                        glm::dvec3(a.color2) * double(b);
-    glm::dvec3 tex(srgb(128 / 255.0), 1.0, 0.0);
+    glm::dvec3 tex(pt::srgb_to_linear(128 / 255.0), 1.0, 0.0);
     glm::dvec3 base = glm::dvec3(m.base_color) * tex * color;
     INFO("barycentric " << b);
     CHECK(got.base_color.x == Approx(base.x).epsilon(1e-5));

@@ -18,6 +18,7 @@
 #include "tests/support/cli_run.h"
 #include "tests/support/gltf_checks.h"
 #include "tests/support/stderr_capture.h"
+#include "tests/support/texels.h"
 
 using namespace pt;
 using namespace pt::test;
@@ -26,7 +27,7 @@ namespace {
 
 // Collects what is written to stderr (file descriptor 2) while it lives.
 
-uint rgba(uint r, uint g, uint b, uint a) { return r | g << 8 | b << 16 | a << 24; }
+using pt_test::rgba;
 
 void check_row(glm::vec3 got, glm::vec3 want) {
   INFO("got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y << ", "
