@@ -35,7 +35,6 @@
 //
 // It writes a linear float RGB .exr, row 0 on top (as the stages' .exr), and prints one
 // line with its CPU time (user + sys of the whole process, getrusage) and wall time.
-#include <OpenImageIO/imageio.h>
 #include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
@@ -45,10 +44,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "common/app/exr_file.h"
 
 namespace {
 
@@ -307,18 +309,21 @@ int main(int argc, char** argv) {
   for (size_t i = 0; i < image.size(); ++i) mean[i % 3] += image[i];
   for (double& m : mean) m /= static_cast<double>(width) * height;
 
-  std::unique_ptr<OIIO::ImageOutput> file = OIIO::ImageOutput::create(out);
-  if (!file) {
-    std::fprintf(stderr, "pt_smallpt_reference: cannot write '%s': %s\n", out.c_str(), OIIO::geterror().c_str());
-    return 1;
-  }
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
-  spec.attribute("Software", "pt_smallpt_reference (bench/smallpt_reference.cpp)");
-  spec.attribute("pt:spp", std::to_string(spp));
-  spec.attribute("pt:seed", std::to_string(seed));
-  spec.attribute("pt:scene", open_front ? "smallpt, open front" : "smallpt");
-  if (!file->open(out, spec) || !file->write_image(OIIO::TypeDesc::FLOAT, image.data()) || !file->close()) {
-    std::fprintf(stderr, "pt_smallpt_reference: cannot write '%s': %s\n", out.c_str(), file->geterror().c_str());
+  // Written as the stages write theirs (common/app/exr_file.h), so both pay the same for it.
+  pt::ExrImage exr;
+  exr.width = width, exr.height = height;
+  exr.channels = {"R", "G", "B"};
+  exr.is_uint.assign(3, false);
+  exr.pixels.resize(image.size());
+  std::memcpy(exr.pixels.data(), image.data(), image.size() * sizeof(float));
+  exr.text = {{"Software", "pt_smallpt_reference (bench/smallpt_reference.cpp)"},
+              {"pt:spp", std::to_string(spp)},
+              {"pt:seed", std::to_string(seed)},
+              {"pt:scene", open_front ? "smallpt, open front" : "smallpt"}};
+  std::string why;
+  if (out.size() < 4 || out.substr(out.size() - 4) != ".exr" || !pt::write_exr(out, exr, why)) {
+    std::fprintf(stderr, "pt_smallpt_reference: cannot write '%s': %s\n", out.c_str(),
+                 why.empty() ? "give an .exr name" : why.c_str());
     return 1;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

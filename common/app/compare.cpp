@@ -8,8 +8,8 @@
 #include <limits>
 #include <memory>
 
-#include <OpenImageIO/imageio.h>
 
+#include "common/app/exr_file.h"
 #include "common/base/error.h"
 #include "common/base/srgb.h"
 
@@ -49,19 +49,16 @@ FilmPart read_comparable(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw Error(kExitBadScene, name + " is not a file; give the .exr that a stage wrote with --out");
   }
-  {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-    if (!in) {
-      std::string why = OIIO::geterror();
-      throw Error(kExitBadScene, name + " cannot be read as an image (" + why.substr(0, why.find('\n')) +
-                                     "); give the .exr that a stage wrote with --out");
-    }
-    if (in->spec().channelindex(std::string("film.") + kFilmSumChannels[3] + ".hi") < 0 ||
-        in->spec().get_string_attribute("pt:stage").empty()) {
-      throw Error(kExitBadScene, name + " has no per-pixel variance (the film's channels): it is not an .exr that a "
-                                        "stage wrote with --out; render it again with --out NAME.exr and --spp 2 "
-                                        "or more");
-    }
+  ExrImage image;
+  std::string why;
+  if (!read_exr(path, image, why)) {
+    throw Error(kExitBadScene, name + " has no per-pixel variance: it cannot be read as an .exr (" + why +
+                                   "); give the .exr that a stage wrote with --out NAME.exr and --spp 2 or more");
+  }
+  if (image.channel(std::string("film.") + kFilmSumChannels[3] + ".hi") < 0 || image.attribute("pt:stage").empty()) {
+    throw Error(kExitBadScene, name + " has no per-pixel variance (the film's channels): it is not an .exr that a "
+                                      "stage wrote with --out; render it again with --out NAME.exr and --spp 2 "
+                                      "or more");
   }
   return read_film_part(path);
 }

@@ -7,9 +7,9 @@
 #include <cstring>
 #include <memory>
 
-#include <OpenImageIO/imageio.h>
 
 #include "common/app/checkpoint.h"
+#include "common/app/exr_file.h"
 #include "common/base/error.h"
 #include "common/scene/scene.h"
 
@@ -77,15 +77,13 @@ FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSe
 }
 
 FilmPart read_film_part(const std::string& path) {
-  using namespace OIIO;
-  std::unique_ptr<ImageInput> in = ImageInput::open(path);
-  if (!in) {
-    std::string why = OIIO::geterror();
-    refuse(path, "cannot be read as an image (" + why.substr(0, why.find('\n')) + "); give the .exr parts --out wrote");
+  ExrImage image;
+  std::string why;
+  if (!read_exr(path, image, why)) {
+    refuse(path, "cannot be read as an .exr (" + why + "); give the .exr parts --out wrote");
   }
-  const ImageSpec& spec = in->spec();
   auto text = [&](const char* name) {
-    const std::string value = spec.get_string_attribute(name);
+    const std::string value = image.attribute(name);
     if (value.empty()) {
       refuse(path, std::string("has no ") + name +
                        ": it is not a part written by a stage's --out .exr (render the part again as .exr)");
@@ -99,42 +97,34 @@ FilmPart read_film_part(const std::string& path) {
   part.id.options = text("pt:options");
   const std::string seed = text("pt:seed");
   part.id.seed = std::uint32_t(std::strtoul(seed.c_str(), nullptr, 10));
-  part.scene = spec.get_string_attribute("pt:scene");
-  part.backend = spec.get_string_attribute("pt:backend");
+  part.scene = image.attribute("pt:scene");
+  part.backend = image.attribute("pt:backend");
   part.ranges = parse_ranges(text("pt:samples"), path);
   std::uint64_t spp = 0;
   for (const SampleRange& r : part.ranges) spp += r.count;
-  // The sums, from the 32-bit halves of each double (a channel of another format or a
+  // The sums, from the 32-bit halves of each double (a channel of another type or a
   // missing one: not a part).
   int index[8];
   for (int k = 0; k < 4; k++) {
     for (int half = 0; half < 2; half++) {
       const std::string name = std::string("film.") + kFilmSumChannels[k] + (half ? ".lo" : ".hi");
-      const int c = spec.channelindex(name);
-      if (c < 0 || spec.channelformat(c) != TypeDesc::UINT) {
+      const int c = image.channel(name);
+      if (c < 0 || !image.is_uint[std::size_t(c)]) {
         refuse(path, "has no channel " + name + " of 32-bit integers: it is not a part written by a stage's --out .exr");
       }
       index[2 * k + half] = c;
     }
   }
-  const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
-  std::vector<std::uint32_t> data(pixels * std::size_t(spec.nchannels));
-  for (int c = 0; c < spec.nchannels; c++) {
-    if (spec.channelformat(c).size() != 4) refuse(path, "has a channel that is not 32 bits: not a part");
-  }
-  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::UNKNOWN, data.data())) {
-    std::string why = in->geterror();
-    refuse(path, "is damaged (" + why.substr(0, why.find('\n')) + ")");
-  }
+  const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height), n = image.channels.size();
   std::vector<double> sums(4 * pixels);
   for (std::size_t p = 0; p < pixels; p++) {
-    const std::uint32_t* v = &data[p * std::size_t(spec.nchannels)];
+    const std::uint32_t* v = &image.pixels[p * n];
     for (int k = 0; k < 4; k++) {
       const std::uint64_t bits = (std::uint64_t(v[index[2 * k]]) << 32) | v[index[2 * k + 1]];
       std::memcpy(&sums[4 * p + std::size_t(k)], &bits, sizeof(double));
     }
   }
-  part.film = Film(spec.width, spec.height);
+  part.film = Film(image.width, image.height);
   part.film.restore(spp, std::move(sums));
   return part;
 }

@@ -1,4 +1,5 @@
-// Atomic image output through OpenImageIO (see image_output.h).
+// Atomic image output (see image_output.h): .exr through OpenEXR (exr_file.h), .png and
+// .hdr through OpenImageIO, loaded only then (common/base/openimageio.h).
 #include "common/app/image_output.h"
 
 #include <fcntl.h>
@@ -11,9 +12,9 @@
 #include <filesystem>
 #include <system_error>
 
-#include <OpenImageIO/imageio.h>
-
+#include "common/app/exr_file.h"
 #include "common/base/error.h"
+#include "common/base/openimageio.h"
 #include "common/render/interrupt.h"
 
 namespace pt {
@@ -34,7 +35,7 @@ fs::path folder_of(const std::string& path) {
 }
 
 // A temporary name beside the target, ending in the target's extension so that
-// OpenImageIO picks the right writer.
+// the writer is the right one.
 fs::path temporary_name(const std::string& path, const std::string& ext) {
   fs::path p(path);
   return folder_of(path) / ("." + p.filename().string() + ".tmp" + std::to_string(::getpid()) + "." + ext);
@@ -77,88 +78,91 @@ std::uint8_t encode_srgb8(float linear, float exposure) {
 
 namespace {
 
-// The film's channels of an .exr (film_file.h): after R, G, B the variance of each pixel's
-// mean luminance, then the two 32-bit halves of each double sum. Returns the pixels in the
-// channels' own formats (4 bytes each), for write_image(TypeDesc::UNKNOWN).
-std::vector<std::uint32_t> film_channels(const std::vector<float>& rgb, const ImageMetadata& meta,
-                                         OIIO::ImageSpec& spec) {
-  using namespace OIIO;
-  const Film& film = *meta.film;
-  spec.nchannels = 3 + 1 + 8;
-  spec.channelnames = {"R", "G", "B", "Y.variance"};
-  spec.channelformats.assign(4, TypeDesc::FLOAT);
-  for (const char* name : kFilmSumChannels) {
-    for (const char* half : {".hi", ".lo"}) {
-      spec.channelnames.push_back(std::string("film.") + name + half);
-      spec.channelformats.push_back(TypeDesc::UINT);
+// An .exr's channels: R, G, B, and for a film (film_file.h) the variance of each pixel's
+// mean luminance, then the two 32-bit halves of each double sum.
+ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const ImageMetadata& meta) {
+  ExrImage image;
+  image.width = width, image.height = height;
+  image.channels = {"R", "G", "B"};
+  if (meta.film) {
+    image.channels.push_back("Y.variance");
+    for (const char* name : kFilmSumChannels) {
+      for (const char* half : {".hi", ".lo"}) image.channels.push_back(std::string("film.") + name + half);
     }
+    image.text.emplace_back("pt:seed", std::to_string(meta.identity.seed));  // what the merge compares
+    image.text.emplace_back("pt:scene_hash", meta.identity.scene_hash);
+    image.text.emplace_back("pt:options", meta.identity.options);
+    image.text.emplace_back("pt:samples", format_ranges(meta.ranges));
   }
-  spec.attribute("pt:seed", std::to_string(meta.identity.seed));  // what the merge compares
-  spec.attribute("pt:scene_hash", meta.identity.scene_hash);
-  spec.attribute("pt:options", meta.identity.options);
-  spec.attribute("pt:samples", format_ranges(meta.ranges));
-  const std::size_t pixels = std::size_t(film.width()) * std::size_t(film.height());
-  std::vector<std::uint32_t> out(pixels * std::size_t(spec.nchannels));
-  const std::vector<double>& sums = film.sums();
+  const std::size_t n = image.channels.size();
+  image.is_uint.assign(n, false);
+  for (std::size_t c = 4; c < n; c++) image.is_uint[c] = true;
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  image.pixels.resize(pixels * n);
   for (std::size_t p = 0; p < pixels; p++) {
-    std::uint32_t* o = &out[p * std::size_t(spec.nchannels)];
-    const int x = int(p % std::size_t(film.width())), y = int(p / std::size_t(film.width()));
-    const float variance = film.spp() >= 2 ? float(film.sample_variance(x, y) / double(film.spp())) : 0.0f;
+    std::uint32_t* o = &image.pixels[p * n];
     std::memcpy(o, &rgb[3 * p], 3 * sizeof(float));
+    if (!meta.film) continue;
+    const Film& film = *meta.film;
+    const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
+    const float variance = film.spp() >= 2 ? float(film.sample_variance(x, y) / double(film.spp())) : 0.0f;
     std::memcpy(o + 3, &variance, sizeof variance);
     for (int k = 0; k < 4; k++) {
       std::uint64_t bits;
-      std::memcpy(&bits, &sums[4 * p + std::size_t(k)], sizeof bits);
+      std::memcpy(&bits, &film.sums()[4 * p + std::size_t(k)], sizeof bits);
       o[4 + 2 * k] = std::uint32_t(bits >> 32);
       o[5 + 2 * k] = std::uint32_t(bits);
     }
   }
-  return out;
+  return image;
 }
 
 }  // namespace
 
 void OutputFile::write(const std::vector<float>& rgb, int width, int height, const ImageMetadata& meta,
                        float exposure) const {
-  using namespace OIIO;
-  bool png = extension_ == "png";
-  ImageSpec spec(width, height, 3, png ? TypeDesc::UINT8 : TypeDesc::FLOAT);
-  spec.attribute("Software", "staged unbiased path tracer, " + meta.stage);
-  spec.attribute("pt:stage", meta.stage);
-  spec.attribute("pt:backend", meta.backend);
-  spec.attribute("pt:scene", meta.scene);
-  spec.attribute("pt:spp", std::to_string(meta.spp));
-  spec.attribute("pt:seed", std::to_string(meta.seed));
-  spec.attribute("pt:seconds", std::to_string(meta.seconds));
-  spec.attribute("ImageDescription", meta.stage + " " + meta.scene + ", " + std::to_string(meta.spp) +
-                                         " spp, seed " + std::to_string(meta.seed) + ", " + meta.backend);
-  if (extension_ == "exr") spec.attribute("compression", "zip");
-
-  std::vector<std::uint8_t> bytes;
-  std::vector<std::uint32_t> film;
-  const void* pixels = rgb.data();
-  TypeDesc format = png ? TypeDesc::UINT8 : TypeDesc::FLOAT;
-  if (png) {
-    bytes.resize(rgb.size());
-    for (std::size_t i = 0; i < rgb.size(); i++) bytes[i] = encode_srgb8(rgb[i], exposure);
-    pixels = bytes.data();
-  } else if (extension_ == "exr" && meta.film) {
-    film = film_channels(rgb, meta, spec);
-    pixels = film.data();
-    format = TypeDesc::UNKNOWN;  // each channel in its own format
-  }
+  ImageAttributes text = {
+      {"Software", "staged unbiased path tracer, " + meta.stage},
+      {"pt:stage", meta.stage},
+      {"pt:backend", meta.backend},
+      {"pt:scene", meta.scene},
+      {"pt:spp", std::to_string(meta.spp)},
+      {"pt:seed", std::to_string(meta.seed)},
+      {"pt:seconds", std::to_string(meta.seconds)},
+  };
+  const std::string description = meta.stage + " " + meta.scene + ", " + std::to_string(meta.spp) + " spp, seed " +
+                                  std::to_string(meta.seed) + ", " + meta.backend;
 
   fs::path tmp = temporary_name(path_, extension_);
   set_file_in_progress(tmp.c_str());  // a second Ctrl-C removes it
-  auto out = ImageOutput::create(extension_);
-  if (!out) fail(path_, "no " + extension_ + " writer in OpenImageIO");
-  bool ok = out->open(tmp.string(), spec) && out->write_image(format, pixels) &&
-            out->close();
+  std::string why;
+  bool ok;
+  if (extension_ == "exr") {
+    ExrImage image = exr_image(rgb, width, height, meta);
+    for (const auto& attribute : text) {  // the film's seed, when there is one, wins
+      if (image.attribute(attribute.first).empty()) image.text.push_back(attribute);
+    }
+    image.text.emplace_back("comments", description);  // EXR's own name for a description
+    ok = write_exr(tmp.string(), image, why);
+  } else {
+    const ImageCodec* codec = openimageio(why);
+    if (!codec) {
+      set_file_in_progress("");
+      throw Error(kExitOutput, "cannot write '" + path_ + "': " + why);
+    }
+    text.emplace_back("ImageDescription", description);
+    std::vector<std::uint8_t> bytes;
+    if (extension_ == "png") {
+      bytes.resize(rgb.size());
+      for (std::size_t i = 0; i < rgb.size(); i++) bytes[i] = encode_srgb8(rgb[i], exposure);
+    }
+    const void* pixels = bytes.empty() ? static_cast<const void*>(rgb.data()) : bytes.data();
+    ok = codec->write_rgb(tmp.string(), extension_, width, height, pixels, text, why);
+  }
   std::error_code ec;
   if (!ok) {
-    std::string why = out->geterror();
     fs::remove(tmp, ec);
-    fail(path_, why.empty() ? "the image writer failed" : why.substr(0, why.find('\n')));
+    fail(path_, why.substr(0, why.find('\n')));
   }
   // Flush to the disk before the rename, so the target is the old file or the whole new one.
   int fd = ::open(tmp.c_str(), O_RDONLY);

@@ -1,6 +1,6 @@
-// Image output through OpenImageIO (the contract (README.md), --out): .exr linear float32 RGB radiance
-// (and the film's channels, film_file.h),
-// .png 8-bit sRGB (exposure, then clamp), .hdr RGBE. The target is checked before the
+// Image output (the contract (README.md), --out): .exr linear float32 RGB radiance and the
+// film's channels (film_file.h), written by OpenEXR (exr_file.h); .png 8-bit sRGB (exposure,
+// then clamp) and .hdr RGBE, written by OpenImageIO (common/base/openimageio.h). The target is checked before the
 // render starts and written atomically after it: a temporary file in the same folder,
 // flushed, then renamed over the target, so a failed run never leaves a broken file.
 #pragma once

@@ -1,6 +1,6 @@
 // glTF textures (see gltf_textures.h): the texture slots of a material with their samplers
 // and KHR_texture_transform, and the images they use decoded by OpenImageIO from memory
-// (PNG or JPEG; never by tinygltf), each checked against kMaxTextureSize and all together
+// (PNG or JPEG; never by tinygltf; OpenImageIO is loaded then, common/base/openimageio.h), each checked against kMaxTextureSize and all together
 // against kMaxTexelBytes before any is decoded.
 #include "common/scene/gltf_textures.h"
 
@@ -13,10 +13,8 @@
 #include <cstring>
 #include <memory>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include "common/base/error.h"
+#include "common/base/openimageio.h"
 #include "common/scene/gltf_validate.h"
 #include "common/scene/gltf_validate_detail.h"
 
@@ -117,74 +115,64 @@ class OpenedImage {
       fail(file, what + " is neither a PNG nor a JPEG image: glTF images are PNG or JPEG; convert it and re-export");
     }
     if (png) check_png_chunks(bytes, file, what);
-    input_ = OIIO::ImageInput::create(png ? "png" : "jpeg");
-    if (!input_) fail(file, what + ": OpenImageIO has no " + (png ? "PNG" : "JPEG") + " reader (" +
-                                short_error(OIIO::geterror()) + "); install its plugins");
-    reader_ = std::make_unique<OIIO::Filesystem::IOMemReader>(bytes.data(), bytes.size());
-    input_->set_ioproxy(reader_.get());
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);  // glTF's alpha is straight: keep the colour as stored
-    bool opened;
+    std::string why;
+    const ImageCodec* codec = openimageio(why);
+    if (!codec) fail(file, what + ": " + why);
     {
       QuietStderr quiet;
-      opened = input_->open(png ? "image.png" : "image.jpg", spec_, config);
+      input_ = codec->open_memory(bytes.data(), bytes.size(), png, why);
     }
-    if (!opened) {
-      fail(file, what + " cannot be decoded (" + short_error(input_->geterror()) +
-                     "): the image is damaged or truncated; re-export it");
+    if (!input_) {
+      fail(file, what + " cannot be decoded (" + short_error(why) + "): the image is damaged or truncated; re-export it");
     }
-    if (spec_.nchannels < 1 || spec_.nchannels > 4) {
-      fail(file, what + " has " + std::to_string(spec_.nchannels) +
+    if (input_->channels() < 1 || input_->channels() > 4) {
+      fail(file, what + " has " + std::to_string(input_->channels()) +
                      " channels; glTF images have 1 to 4: convert it to RGB or RGBA and re-export");
     }
-    if (spec_.width <= 0 || spec_.height <= 0 || spec_.depth != 1) {
-      fail(file, what + " has no texels (" + std::to_string(spec_.width) + " x " + std::to_string(spec_.height) +
+    if (input_->width() <= 0 || input_->height() <= 0 || input_->depth() != 1) {
+      fail(file, what + " has no texels (" + std::to_string(input_->width()) + " x " + std::to_string(input_->height()) +
                      "): re-export it");
     }
-    if (std::uint64_t(spec_.width) > kMaxTextureSize || std::uint64_t(spec_.height) > kMaxTextureSize) {
-      fail(file, what + " is " + std::to_string(spec_.width) + " x " + std::to_string(spec_.height) +
+    if (std::uint64_t(input_->width()) > kMaxTextureSize || std::uint64_t(input_->height()) > kMaxTextureSize) {
+      fail(file, what + " is " + std::to_string(input_->width()) + " x " + std::to_string(input_->height()) +
                      " texels, more than the " + std::to_string(kMaxTextureSize) + " x " +
                      std::to_string(kMaxTextureSize) + " an image may have: downscale it and re-export");
     }
   }
 
-  std::uint32_t width() const { return std::uint32_t(spec_.width); }
-  std::uint32_t height() const { return std::uint32_t(spec_.height); }
+  std::uint32_t width() const { return std::uint32_t(input_->width()); }
+  std::uint32_t height() const { return std::uint32_t(input_->height()); }
   std::uint64_t texels() const { return std::uint64_t(width()) * height(); }
 
   // Reads the texels as 8-bit RGBA into out[0 .. width * height), a few rows at a time.
   void decode(std::uint32_t* out) {
-    const int channels = spec_.nchannels;
+    const int channels = input_->channels();
     const int rows_per_read = 64;
-    std::vector<unsigned char> rows(std::size_t(spec_.width) * channels * rows_per_read);
-    for (int y0 = 0; y0 < spec_.height; y0 += rows_per_read) {
-      const int y1 = std::min(spec_.height, y0 + rows_per_read);
+    std::vector<unsigned char> rows(std::size_t(input_->width()) * channels * rows_per_read);
+    for (int y0 = 0; y0 < input_->height(); y0 += rows_per_read) {
+      const int y1 = std::min(input_->height(), y0 + rows_per_read);
       bool read;
       {
         QuietStderr quiet;
-        read = input_->read_scanlines(0, 0, spec_.y + y0, spec_.y + y1, 0, 0, channels, OIIO::TypeDesc::UINT8,
-                                      rows.data());
+        read = input_->read_rows(y0, y1, rows.data());
       }
       if (!read) {
-        fail(file_, what_ + " cannot be decoded (" + short_error(input_->geterror()) +
+        fail(file_, what_ + " cannot be decoded (" + short_error(input_->error()) +
                         "): the image is damaged or truncated; re-export it");
       }
-      const std::size_t n = std::size_t(y1 - y0) * std::size_t(spec_.width);
+      const std::size_t n = std::size_t(y1 - y0) * std::size_t(input_->width());
       for (std::size_t i = 0; i < n; ++i) {
         const unsigned char* p = &rows[i * channels];
         std::uint32_t r = p[0], g = channels >= 3 ? p[1] : p[0], b = channels >= 3 ? p[2] : p[0];
         std::uint32_t a = channels == 2 ? p[1] : channels == 4 ? p[3] : 255u;
-        out[std::size_t(y0) * std::size_t(spec_.width) + i] = r | g << 8 | b << 16 | a << 24;
+        out[std::size_t(y0) * std::size_t(input_->width()) + i] = r | g << 8 | b << 16 | a << 24;
       }
     }
-    input_->close();
   }
 
  private:
   std::string file_, what_;
-  std::unique_ptr<OIIO::Filesystem::IOMemReader> reader_;  // outlives input_ (declared first)
-  std::unique_ptr<OIIO::ImageInput> input_;
-  OIIO::ImageSpec spec_;
+  std::unique_ptr<ImageReader> input_;
 };
 
 // The encoded bytes of model.images[index]: its bufferView's, or those keep_image_bytes kept.
