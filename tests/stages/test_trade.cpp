@@ -1,7 +1,8 @@
 // The user's trade of time for accuracy (render.h): --target-error stops when the
 // estimated per-pixel relative error (Film::per_pixel_relative_error, the figure the
-// summary line prints) is reached, and that estimate is honest against closed forms: it
-// matches the per-pixel error measured over 20 seeds. The image mean's far smaller error
+// summary line prints) is reached, and that estimate is honest against closed forms and
+// against a long render of the Cornell box: it matches the per-pixel error measured over
+// 20 seeds. The image mean's far smaller error
 // is honest too. --time-budget stops after the pass that spends it.
 #include <catch2/catch.hpp>
 
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "common/scene/analytic_scenes.h"
+#include "common/scene/scene_loading.h"
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "tests/support/analytic_suite.h"
@@ -67,18 +69,18 @@ Honesty honesty(const StageKernels& kernels, const Scene& scene, RenderSettings 
 }
 
 // The printed error within 20% of the measured one (the issue's requirement), and the
-// measurement precise enough that 20% is at least 4 of its standard errors: a failure is
+// measurement precise enough that 20% is at least 4 (or as the caller says) of its standard errors: a failure is
 // a dishonest estimate, not bad luck, and a pass is not a lucky one either.
 // That is for independent samples, what the printed figure (the pixel's sample variance
 // over N) estimates. Under the default Owen-scrambled Sobol sampler the same figure is an
 // upper bound (docs/sampling.md): the printed error is at least the measured one.
-void check_honest(const Honesty& h, std::uint32_t sampler) {
+void check_honest(const Honesty& h, std::uint32_t sampler, double standard_errors = 4.0) {
   INFO("printed " << h.printed << ", measured " << h.measured << " +- " << h.measured_relative_se * h.measured
                   << (sampler == kSamplerSobol ? " (sobol)" : " (independent)"));
   double ratio = h.printed / h.measured;
   CHECK(ratio >= (sampler == kSamplerSobol ? 1.0 : 0.8));
   if (sampler == kSamplerIndependent) CHECK(ratio <= 1.2);
-  CHECK(h.measured_relative_se <= 0.2 / 4.0);
+  CHECK(h.measured_relative_se <= 0.2 / standard_errors);
 }
 
 // The furnace box (albedo 0.5): 2 everywhere. With throughput roulette a path's value is
@@ -120,6 +122,61 @@ TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one 
       s.sampler = sampler;
       check_honest(honesty(stage4::kernels(), scene, s, luminances(floor_light_image(a, size)), runs), sampler);
     }
+  }
+}
+
+// The Cornell box has no closed form: a long render of the same pixels stands in for it,
+// at 32x32 pixels and, averaged 2x2 (a pixel is the union of its four quarters), at 16x16.
+// The measured error then holds the reference's own noise too, E[(x - ref)^2] = Var x +
+// Var ref per pixel; the reference's film knows its variance, which is taken off.
+struct Reference {
+  std::vector<double> luminance, variance;  // per pixel: the mean's, and its variance
+};
+
+Reference cornell_reference(const Film& film, int size) {
+  const int k = film.width() / size;
+  Reference r;
+  for (int y = 0; y < size; y++) {
+    for (int x = 0; x < size; x++) {
+      double l = 0.0, v = 0.0;
+      for (int j = 0; j < k; j++) {
+        for (int i = 0; i < k; i++) {
+          l += luminance(film.mean(k * x + i, k * y + j)) / double(k * k);
+          v += film.sample_variance(k * x + i, k * y + j) / double(film.spp()) / double(k * k * k * k);
+        }
+      }
+      r.luminance.push_back(l), r.variance.push_back(v);
+    }
+  }
+  return r;
+}
+
+TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 or 40 seeds, Cornell box "
+          "against a long reference (independent samples)",
+          "[stage4][trade][statistical]") {
+  Scene scene = make_builtin_scene("cornell");
+  RenderSettings r = settings(32, 32, 1u << 14, test_seed(8000));
+  r.sampler = kSamplerIndependent;  // so that its sample variance is its error's
+  const Film long_render = render_on_test_backend(stage4::kernels(), scene, r).film;
+  // Independent samples only: under sobol the error at 4096 spp is below what an
+  // affordable reference resolves (the closed-form cases above test the upper bound).
+  for (std::uint64_t spp : {16u, 256u, 4096u}) {
+    // The box's pixel errors are heavy-tailed (the light's edge): 20 seeds x 1024 squared
+    // errors know the RMSE to the 5% that check_honest asks for; at 4096 spp, to keep the
+    // test's time, 40 seeds x 256 (16x16) know it to about 4.5%, so 20% is at least 3 of
+    // their standard errors there.
+    const int size = spp >= 4096 ? 16 : 32, runs = spp >= 4096 ? 40 : 20;
+    const Reference ref = cornell_reference(long_render, size);
+    const double mean = mean_of(ref.luminance), noise2 = mean_of(ref.variance) / (mean * mean);
+    INFO(spp << " spp, " << size << "x" << size << "; the reference's own relative error " << std::sqrt(noise2));
+    RenderSettings s = settings(size, size, spp, test_seed(8100 + std::uint32_t(spp)));
+    s.sampler = kSamplerIndependent;
+    Honesty h = honesty(stage4::kernels(), scene, s, ref.luminance, runs);
+    const double mse = h.measured * h.measured;
+    CHECK(noise2 < 0.25 * mse);  // a reference long enough to stand in for the answer
+    h.measured_relative_se *= mse / (mse - noise2);
+    h.measured = std::sqrt(mse - noise2);
+    check_honest(h, kSamplerIndependent, size == 16 ? 3.0 : 4.0);
   }
 }
 
