@@ -94,24 +94,54 @@ double gamma_q(double a, double x) {
 
 }  // namespace
 
+double mapping_density(const std::function<glm::vec3(glm::vec2)>& sample, glm::vec2 u) {
+  const float h = 1e-3f;
+  glm::dvec3 d1 = (glm::dvec3(sample(u + glm::vec2(h, 0.0f))) - glm::dvec3(sample(u - glm::vec2(h, 0.0f)))) / (2.0 * h);
+  glm::dvec3 d2 = (glm::dvec3(sample(u + glm::vec2(0.0f, h))) - glm::dvec3(sample(u - glm::vec2(0.0f, h)))) / (2.0 * h);
+  return 1.0 / glm::length(glm::cross(d1, d2));
+}
+
+int mapping_density_mismatches(const std::function<glm::vec3(glm::vec2)>& sample,
+                               const std::function<double(glm::dvec3)>& pdf, std::string* first) {
+  int mismatches = 0;
+  for (int i = 0; i < 10; i++) {
+    for (int j = 0; j < 10; j++) {
+      const glm::vec2 u(0.05f + 0.1f * float(i), 0.05f + 0.1f * float(j));
+      const double mapped = mapping_density(sample, u), declared = pdf(glm::dvec3(sample(u)));
+      if (std::abs(mapped - declared) <= 1e-2 * std::abs(declared)) continue;
+      if (mismatches++ == 0 && first) {
+        std::ostringstream t;
+        t << "at u = (" << u.x << ", " << u.y << ") the mapping's density is " << mapped << " and the pdf says "
+          << declared;
+        *first = t.str();
+      }
+    }
+  }
+  return mismatches;
+}
+
 double chi2_upper_tail(double x, int dof) { return gamma_q(0.5 * dof, 0.5 * x); }
 
 Chi2Result chi2_test(const std::function<glm::vec3(glm::vec2)>& sample, const std::function<double(glm::dvec3)>& pdf,
                      const Chi2Options& o, std::uint32_t seed) {
   const int bins = o.theta_bins * o.phi_bins;
   std::vector<double> observed(bins, 0.0), expected(bins, 0.0);
+  Chi2Result r;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (std::uint64_t i = 0; i < o.samples; i++) {
     glm::vec3 w = sample(glm::vec2(u(rng), u(rng)));
-    if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) continue;  // counted as missing
+    if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) {
+      r.non_finite++;  // and missing from the bins
+      continue;
+    }
+    if (std::abs(glm::length(glm::dvec3(w)) - 1.0) > 1e-4) r.not_unit++;
     double z = std::clamp(double(w.z), -1.0, 1.0), phi = std::atan2(double(w.y), double(w.x));
     if (phi < 0.0) phi += 2.0 * M_PI;
     int ti = std::min(o.theta_bins - 1, int((z + 1.0) * 0.5 * o.theta_bins));
     int pi = std::min(o.phi_bins - 1, int(phi / (2.0 * M_PI) * o.phi_bins));
     observed[ti * o.phi_bins + pi] += 1.0;
   }
-  Chi2Result r;
   // Where the pdf peaks: its bin and the bins around it get a graded grid.
   double peak_z = 2.0, peak_phi = 0.0;
   int peak_ti = -10, peak_pi = -10;
@@ -163,7 +193,7 @@ Chi2Result chi2_test(const std::function<glm::vec3(glm::vec2)>& sample, const st
   r.p_value = chi2_upper_tail(r.statistic, r.dof);
   std::sort(contributions.rbegin(), contributions.rend());
   std::ostringstream t;
-  t << "chi2 " << r.statistic << " dof " << r.dof << " p " << r.p_value << " pdf integral " << r.integral
+  t << r.not_unit << " samples not of unit length, " << r.non_finite << " not finite; chi2 " << r.statistic << " dof " << r.dof << " p " << r.p_value << " pdf integral " << r.integral
     << "; pooled observed " << pooled_obs << " expected " << pooled_exp << "; worst bins:";
   for (std::size_t k = 0; k < std::min<std::size_t>(4, contributions.size()); k++) {
     int i = contributions[k].second;

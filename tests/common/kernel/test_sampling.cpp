@@ -41,8 +41,11 @@ glm::vec3 incident(double degrees) {
 
 void require_fit(const Chi2Result& r) {
   INFO(r.table);
+  CHECK(r.not_unit == 0);  // a direction is a unit vector: the bins alone would not see its length
+  CHECK(r.non_finite == 0);
   CHECK(r.p_value > kAlphaPerTest);
 }
+
 
 }  // namespace
 
@@ -82,6 +85,20 @@ TEST_CASE("sampling: GGX visible normals fit their pdf for every roughness and i
       CHECK(r.integral == Approx(1.0).epsilon(2e-3));
     }
   }
+}
+
+TEST_CASE("sampling: each hemisphere sampler's pdf is the density of its mapping, whatever its convention",
+          "[sampling]") {
+  std::string uniform_first, cosine_first;
+  const int uniform = mapping_density_mismatches(
+      kernel::sample_uniform_hemisphere, [](glm::dvec3) { return double(kernel::uniform_hemisphere_pdf()); },
+      &uniform_first);
+  const int cosine = mapping_density_mismatches(
+      kernel::sample_cosine_hemisphere, [](glm::dvec3 w) { return double(kernel::cosine_hemisphere_pdf(float(w.z))); },
+      &cosine_first);
+  INFO("uniform: " << uniform_first << "; cosine: " << cosine_first);
+  CHECK(uniform == 0);
+  CHECK(cosine == 0);
 }
 
 TEST_CASE("sampling: the inverses undo the samplers", "[sampling]") {
