@@ -41,16 +41,4 @@ float uniform_hemisphere_pdf();
 vec3 sample_cosine_hemisphere(vec2 u);
 float cosine_hemisphere_pdf(float cos_theta);
 
-vec2 invert_uniform_hemisphere(vec3 w) {
-  float phi = atan(w.y, w.x);
-  if (phi < 0.0f) phi += 2.0f * kPi;
-  return vec2(w.z, phi / (2.0f * kPi));
-}
-
-vec2 invert_cosine_hemisphere(vec3 w) {
-  float phi = atan(w.y, w.x);
-  if (phi < 0.0f) phi += 2.0f * kPi;
-  return vec2(w.x * w.x + w.y * w.y, phi / (2.0f * kPi));
-}
-
 #endif  // PT_SAMPLING_GLSL
