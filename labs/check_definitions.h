@@ -38,6 +38,10 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   return pt::lab::selected() == 4 ? student::sample_triangle_light(index, p, u, pick)
                                   : reference::sample_triangle_light(index, p, u, pick);
 }
+float triangle_light_pdf(uint index, vec3 wi, float dist) {
+  return pt::lab::selected() == 4 ? student::triangle_light_pdf(index, wi, dist)
+                                  : reference::triangle_light_pdf(index, wi, dist);
+}
 vec3 inverse_direction(vec3 dir) {
   return pt::lab::selected() == 5 ? student::inverse_direction(dir) : reference::inverse_direction(dir);
 }

@@ -1,8 +1,9 @@
 // Lab 4 (docs/labs/lab4.md): light sampling, the article's Eq. (5) corrected (erratum 5):
 // the direct light from an emissive triangle needs the geometry term cos_y / d^2 and the
-// area pdf 1 / A that the printed formula lacks. Write the sample of one triangle light.
-// Built instead of common/kernel/triangle_light.glsl when you configure
-// with -DPT_LAB=4. Graded by `ctest -L lab4`.
+// area pdf 1 / A that the printed formula lacks. Write the sample of one triangle light,
+// and the pdf of a direction that meets it. Built instead of
+// common/kernel/triangle_light.glsl when you configure with -DPT_LAB=4. Graded by
+// `ctest -L lab4`.
 // Written in the GLSL/C++ subset (docs/README.md): it runs on both backends.
 
 #include "labs/lab_support.glsl"
@@ -21,4 +22,14 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
   // Your code here. Remove the line below when you are done.
   float nan = PT_LAB_NOT_WRITTEN(4, sample_triangle_light) * u.x * pick;
   return LightSample(p, nan, vec3(nan), float(index) * nan);
+}
+
+// index: a triangle that the ray from a point in the unit direction wi meets at distance
+// dist. Return the pdf with which sample_triangle_light, with pick the probability
+// of choosing this light (light_pick_probability(tri.light)), draws wi: the same number as
+// the sample's pdf for that point. Return 0 when the triangle is no light
+// (tri.light == kNoLight) or, one-sided, is seen from behind.
+float triangle_light_pdf(uint index, vec3 wi, float dist) {
+  // Your code here. Remove the line below when you are done.
+  return PT_LAB_NOT_WRITTEN(4, triangle_light_pdf) * float(index) * dist * wi.x;
 }

@@ -1,9 +1,17 @@
 #!/usr/bin/env python3
 """Makes the students' copy of lab N (docs/labs/README.md; labs 1-4 follow the article's
-Eq. 2 to 5, lab 5 the BVH after it, lab 6 stage5_mis's multiple importance sampling): the repository without .git and build folders, in which
-the reference code of the functions lab N asks for (the files its build replaces by
-labs/labN.glsl, see cmake/Labs.cmake) is removed from their bodies, and the chapters'
-excerpts of them too, so the answer is not handed out with the question.
+Eq. 2 to 5, lab 5 the BVH after it, lab 6 stage5_mis's multiple importance sampling): the
+repository without .git and build folders, in which
+  - the reference code of the functions lab N asks for (the files its build replaces by
+    labs/labN.glsl, see cmake/Labs.cmake) is removed from their bodies, and the chapters'
+    excerpts of them too, so the answer is not handed out with the question;
+  - other copies of that answer, marked in the source as a region between a line holding
+    [lab N answer] and one holding [/lab N answer] (cpu/wide_bvh_walk.cpp: lab 5's slab test
+    on SIMD lanes), are cut, markers included;
+  - the teacher's held-back tests, every Catch2 TEST_CASE in tests/ tagged [held_back] (with
+    the comment lines just above it; a file whose every test is held back keeps only its
+    opening comment), are removed: they grade the class (tools/grade_lab.py builds the
+    teacher's tree), but the students never see them (docs/labs/teachers.md).
 usage: tools/make_lab_handout.py N DEST     (DEST must not exist yet)"""
 import os
 import re
@@ -28,6 +36,13 @@ REFERENCE_FILES = {
     6: ["common/kernel/mis.glsl"],
 }
 DEFINITION = re.compile(r"^(\w+)\s+(\w+)\s*\(.*\{\s*$")
+# Regions of other files that hold a copy of lab N's answer; the files they may be in.
+REGION_START = re.compile(r"\[lab (\d) answer\]")
+REGION_END = re.compile(r"\[/lab (\d) answer\]")
+SOURCE_ENDINGS = (".glsl", ".comp", ".h", ".cpp")
+# A held-back test: a Catch2 test case whose tags (up to the line that opens its body) hold [held_back].
+TEST_CASE = re.compile(r"^(TEST_CASE|TEST_CASE_METHOD|SCENARIO)\s*\(")
+HELD_BACK = "[held_back]"
 
 
 def strip_sources(dest, lab):
@@ -56,6 +71,86 @@ def strip_sources(dest, lab):
         with open(path, "w", encoding="utf-8") as fh:
             fh.write("\n".join(out))
     return names
+
+
+def source_files(dest, top=""):
+    """The project's source files under dest/top, as paths relative to dest (not in .git, out/
+    or a build folder, as the handout's copy leaves them out)."""
+    found = []
+    for root, dirs, files in os.walk(os.path.join(dest, top)):
+        dirs[:] = sorted(d for d in dirs if not (d in (".git", "out") or d.startswith("build")))
+        found += [os.path.relpath(os.path.join(root, f), dest) for f in sorted(files) if f.endswith(SOURCE_ENDINGS)]
+    return found
+
+
+def strip_regions(dest, lab):
+    """Cuts every [lab N answer] ... [/lab N answer] region; returns the files cut."""
+    cut = []
+    for rel in source_files(dest):
+        lines = docs_check.read_lines(os.path.join(dest, rel))
+        out, start = [], None
+        for i, line in enumerate(lines):
+            m, e = REGION_START.search(line), REGION_END.search(line)
+            if m and int(m.group(1)) == lab:
+                if start is not None:
+                    raise SystemExit(f"make_lab_handout: {rel}:{i + 1}: a [lab {lab} answer] inside another")
+                start = i
+                indent = line[:len(line) - len(line.lstrip())]
+                out.append(f"{indent}// Lab {lab}'s answer is cut from here in its handout (tools/make_lab_handout.py).")
+            elif e and int(e.group(1)) == lab:
+                if start is None:
+                    raise SystemExit(f"make_lab_handout: {rel}:{i + 1}: [/lab {lab} answer] without its start")
+                start = None
+            elif start is None:
+                out.append(line)
+        if start is not None:
+            raise SystemExit(f"make_lab_handout: {rel}:{start + 1}: [lab {lab} answer] is never closed")
+        if out != lines:
+            with open(os.path.join(dest, rel), "w", encoding="utf-8") as fh:
+                fh.write("\n".join(out))
+            cut.append(rel)
+    return cut
+
+
+def strip_held_back(dest):
+    """Removes every test case tagged [held_back] from tests/; returns their (file, first line)."""
+    removed = []
+    for rel in source_files(dest, "tests"):
+        lines = docs_check.read_lines(os.path.join(dest, rel))
+        out, i, cases, held = [], 0, 0, 0
+        while i < len(lines):
+            if not TEST_CASE.match(lines[i]):
+                out.append(lines[i])
+                i += 1
+                continue
+            cases += 1
+            opens = i  # the line that opens the body: the test's name and tags are above it
+            while opens < len(lines) and not lines[opens].rstrip().endswith("{"):
+                opens += 1
+            header = " ".join(lines[i:opens + 1])
+            end = docs_check.block_end(lines, i) if opens < len(lines) else None
+            if HELD_BACK not in header:
+                out.append(lines[i])
+                i += 1
+                continue
+            if end is None:
+                raise SystemExit(f"make_lab_handout: {rel}:{i + 1}: a {HELD_BACK} test case without its closing '}}'")
+            while out and out[-1].startswith("//"):  # the comment that describes it
+                out.pop()
+            while out and not out[-1].strip() and end + 1 < len(lines) and not lines[end + 1].strip():
+                out.pop()  # one blank line between the neighbours, not two
+            removed.append((rel, i + 1))
+            held += 1
+            i = end + 1
+        if cases and held == cases:
+            # Every test of the file is held back: its helpers go too, down to its opening comment.
+            head = next((k for k, line in enumerate(lines) if not line.startswith("//")), len(lines))
+            out = lines[:head] + [f"// This handout holds none of its tests (tools/make_lab_handout.py, "
+                                  f"docs/labs/teachers.md).", ""]
+        if out != lines:
+            with open(os.path.join(dest, rel), "w", encoding="utf-8") as fh:
+                fh.write("\n".join(out))
+    return removed
 
 
 def strip_docs(dest, lab, names):
@@ -98,12 +193,17 @@ def main():
         print(f"make_lab_handout: no function found in {', '.join(REFERENCE_FILES[lab])}", file=sys.stderr)
         return 1
     strip_docs(dest, lab, names)
+    regions = strip_regions(dest, lab)
+    held_back = strip_held_back(dest)
     # The shorter bodies move the lines below them: renumber the docs' line references.
     problems = docs_check.run(dest, update=True)
     if problems.errors:
         print("\n".join(problems.errors), file=sys.stderr)
         return 1
     print(f"make_lab_handout: {dest}: lab {lab}, reference code removed from {', '.join(p + '#' + n for p, n in names)}; "
+          f"answer regions cut from {', '.join(regions) or 'no other file'}; "
+          f"{len(held_back)} held-back test(s) removed{': ' if held_back else ''}"
+          f"{', '.join(f'{p}:{n}' for p, n in held_back)}; "
           f"build it with -DPT_LAB={lab} and grade with ctest -L lab{lab}")
     return 0
 

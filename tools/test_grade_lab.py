@@ -1,23 +1,30 @@
 #!/usr/bin/env python3
 """Test of tools/grade_lab.py (grading a class's lab submissions; tooling for teachers, not a
-part of the article): bad usage exits 2 with one line; then lab 2 is graded on fixture
-submissions made here from the reference functions (common/kernel/uniform_hemisphere.glsl),
-and each must get its verdict line:
+part of the article): bad usage exits 2 with one line; then labs 2 and 4 are graded on fixture
+submissions made here from the reference functions, which are renamed and called by wrappers,
+so that no line of their bodies is quoted here (the handout ships this file without them).
+Each submission must get its verdict line. Lab 2 (common/kernel/uniform_hemisphere.glsl):
   a_correct          the reference                                  PASS
-  b_syntax_error     the reference less a semicolon, graded right   COMPILE ERROR at labs/lab2.glsl
+  b_syntax_error     a wrapper less a semicolon, graded right       COMPILE ERROR at labs/lab2.glsl
                      after a correct one (issue 24: the stale
                      binaries of a_correct passed)
   c_pdf_2pi          pdf = 2 pi instead of 1 / (2 pi)               FAIL, the furnace among the criteria
   d_theta_uniform    theta uniform instead of cos(theta)            FAIL, the chi-square among the criteria
-  e_convention/      u.x and u.y swapped: right in distribution,    FAIL (convention) only
-    lab2.glsl        but the project's inverse does not undo it
+  e_convention/      u.x and u.y swapped: another convention,       PASS (the project fixes no
+    lab2.glsl        right in distribution                          convention: docs/monte_carlo.md)
   f_endless_loop     while (true) {} in the sampler                 TIMEOUT
   g_crash            a read far out of the materials' bounds        CRASH SIGSEGV
   h_empty/           a folder without lab2.glsl                     COMPILE ERROR no lab2.glsl
-and grades.csv and grades.xml hold one row and one testcase per submission.
-usage: tools/test_grade_lab.py [WORK]   (ctest entry grade_lab; WORK: the lab build, kept between
-runs so that only the first run builds lab 2 from nothing, ~7 min on 2 cores;
-PT_GRADE_TEST_TIMEOUT: seconds for one submission's tests, default 30)"""
+and grades.csv and grades.xml hold one row and one testcase per submission. Lab 4
+(common/kernel/triangle_light.glsl):
+  a_correct          the reference                                  PASS
+  b_pdf_doubled      the sample's pdf twice the right one           FAIL, the mean of 1/pdf among the criteria
+  c_pdf_mismatch     triangle_light_pdf twice the sample's pdf      FAIL, the held-back test among them
+usage: tools/test_grade_lab.py [WORK]   (ctest entry grade_lab; WORK: lab 2's build, and WORK_lab4
+lab 4's, kept between runs so that only the first run builds each lab from nothing, ~7 min
+each on 2 cores; PT_GRADE_TEST_TIMEOUT: seconds for one lab 2 submission's tests, default 30
+(lab 4's, without an endless loop among them, have 300); PT_GRADE_TEST_LABS: the labs to
+grade, default "2,4")"""
 import csv
 import os
 import re
@@ -30,7 +37,7 @@ import xml.etree.ElementTree as ET
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 TOOL = os.path.join(HERE, "grade_lab.py")
-# Seconds for one submission's tests: the correct submission's take 2.4 s on 2 cores.
+# Seconds for one lab 2 submission's tests: the correct submission's take 2.4 s on 2 cores.
 TIMEOUT = os.environ.get("PT_GRADE_TEST_TIMEOUT", "30")
 
 
@@ -43,31 +50,125 @@ def expect(cond, what, output=""):
     print("ok: " + what)
 
 
-def fixtures(folder):
-    reference = open(os.path.join(REPO, "common", "kernel", "uniform_hemisphere.glsl"), encoding="utf-8").read()
-    z_line, pdf_line, phi_line = "  float z = u.x;\n", "  return 1.0f / (2.0f * kPi);\n", "  float phi = 2.0f * kPi * u.y;\n"
-    for line in (z_line, pdf_line, phi_line):
-        expect(line in reference, f"the reference sampler has the line '{line.strip()}' the fixtures change")
+def with_wrappers(rel, renames, wrappers):
+    """The reference file `rel` with its functions renamed (signature -> new name) and, before
+    its last #endif, `wrappers`: a submission built from the reference without quoting a line
+    of its bodies, which the handout leaves out (tools/make_lab_handout.py)."""
+    text = open(os.path.join(REPO, rel), encoding="utf-8").read()
+    for signature, name in renames.items():
+        if signature not in text:
+            expect(False, f"{rel} has '{signature}'")
+        text = text.replace(signature, signature.replace(signature.split("(")[0].split()[-1], name), 1)
+    at = text.rindex("#endif")
+    return text[:at] + wrappers + "\n" + text[at:]
 
-    def variant(old, new):
-        return reference.replace(old, new, 1)
 
-    files = {
-        "a_correct.glsl": reference,
-        "b_syntax_error.glsl": variant(z_line, "  float z = u.x\n"),
-        "c_pdf_2pi.glsl": variant(pdf_line, "  return 2.0f * kPi;\n"),
-        "d_theta_uniform.glsl": variant(z_line, "  float z = cos(0.5f * kPi * u.x);\n"),
-        "e_convention/lab2.glsl": variant(phi_line, "  float phi = 2.0f * kPi * u.x;\n").replace(z_line, "  float z = u.y;\n", 1),
-        "f_endless_loop.glsl": variant(z_line, "  while (true) {\n  }\n" + z_line),
-        # A read far past the end of the scene's materials: SIGSEGV on the CPU (the read decides
-        # z: 0 * x is not folded away without -ffast-math).
-        "g_crash.glsl": variant(z_line, "  float z = u.x + 0.0f * materials[100000000 + int(u.y)].metallic;\n"),
-        "h_empty/README.txt": "lab2.glsl was forgotten\n",
-    }
+def write(folder, files):
     for rel, text in files.items():
         os.makedirs(os.path.dirname(os.path.join(folder, rel)), exist_ok=True)
         with open(os.path.join(folder, rel), "w", encoding="utf-8") as fh:
             fh.write(text)
+
+
+def lab2_fixtures(folder):
+    rel = "common/kernel/uniform_hemisphere.glsl"
+    renames = {"vec3 sample_uniform_hemisphere(vec2 u)": "reference_sampler",
+               "float uniform_hemisphere_pdf()": "reference_pdf"}
+
+    def variant(sampler="return reference_sampler(u);", pdf="return reference_pdf();"):
+        return with_wrappers(rel, renames, f"vec3 sample_uniform_hemisphere(vec2 u) {{\n  {sampler}\n}}\n\n"
+                                           f"float uniform_hemisphere_pdf() {{\n  {pdf}\n}}\n")
+
+    write(folder, {
+        "a_correct.glsl": open(os.path.join(REPO, rel), encoding="utf-8").read(),
+        "b_syntax_error.glsl": variant(sampler="return reference_sampler(u)"),
+        "c_pdf_2pi.glsl": variant(pdf="return 2.0f * kPi;"),
+        # The reference's cos(theta) is u.x: feeding it cos of a uniform angle makes theta uniform.
+        "d_theta_uniform.glsl": variant(sampler="return reference_sampler(vec2(cos(0.5f * kPi * u.x), u.y));"),
+        "e_convention/lab2.glsl": variant(sampler="return reference_sampler(vec2(u.y, u.x));"),
+        "f_endless_loop.glsl": variant(sampler="while (true) {\n  }\n  return reference_sampler(u);"),
+        # A read far past the end of the scene's materials: SIGSEGV on the CPU (the read decides
+        # the sample: 0 * x is not folded away without -ffast-math).
+        "g_crash.glsl": variant(sampler="return reference_sampler(u + vec2(0.0f * materials[100000000 + int(u.y)].metallic));"),
+        "h_empty/README.txt": "lab2.glsl was forgotten\n",
+    })
+
+
+def lab4_fixtures(folder):
+    rel = "common/kernel/triangle_light.glsl"
+    renames = {"LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick)": "reference_sample",
+               "float triangle_light_pdf(uint index, vec3 wi, float dist)": "reference_pdf"}
+
+    def variant(sample="return reference_sample(index, p, u, pick);", pdf="return reference_pdf(index, wi, dist);"):
+        return with_wrappers(rel, renames,
+                             f"LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {{\n  {sample}\n}}\n\n"
+                             f"float triangle_light_pdf(uint index, vec3 wi, float dist) {{\n  {pdf}\n}}\n")
+
+    write(folder, {
+        "a_correct.glsl": open(os.path.join(REPO, rel), encoding="utf-8").read(),
+        "b_pdf_doubled.glsl": variant(sample="return reference_sample(index, p, u, 2.0f * pick);"),
+        # Only the pdf of a given direction is wrong: stage4 never calls it, the tests do, the
+        # held-back one ([held_back], not in the handout) among them.
+        "c_pdf_mismatch.glsl": variant(pdf="return 2.0f * reference_pdf(index, wi, dist);"),
+    })
+
+
+def grade(lab, subs, out, work, timeout):
+    """Grades the folder; returns {name: verdict line}."""
+    start = time.monotonic()
+    r = subprocess.run([sys.executable, TOOL, str(lab), subs, "--out", out, "--work", work, "--timeout", timeout],
+                       capture_output=True, text=True)
+    print(f"grading lab {lab} took {time.monotonic() - start:.0f} s")
+    print(r.stdout + r.stderr)
+    expect(r.returncode == 0, f"grade_lab.py ran lab {lab} and exits 0")
+    for row in csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")):
+        print(f"{row['name']}: {row['verdict']}, build {row['build_seconds']} s, tests {row['test_seconds']} s")
+    return dict(line.split(": ", 1) for line in r.stdout.splitlines())
+
+
+def check_lines(lines, expected):
+    expect(list(lines) == sorted(expected), "one line per submission, in the order of the names")
+    for name, pattern in expected.items():
+        expect(re.fullmatch(pattern, lines.get(name, "")) is not None, f"{name}: {pattern}", lines.get(name, ""))
+
+
+def lab2(subs, out, work):
+    lab2_fixtures(subs)
+    lines = grade(2, subs, out, work, TIMEOUT)
+    expected = {
+        "a_correct": r"PASS",
+        "b_syntax_error": r"COMPILE ERROR labs/lab2\.glsl:\d+(:\d+)?: error: .*",
+        "c_pdf_2pi": r"FAIL (?!\(convention\)).*stage2: furnace box.*->.*",
+        "d_theta_uniform": r"FAIL .*sampling: uniform and cosine hemisphere samples fit their pdfs \(chi-square\) -> .*",
+        "e_convention": r"PASS",
+        "f_endless_loop": r"TIMEOUT after \S+ s in \".*\"",
+        "g_crash": r"CRASH SIGSEGV in \".*\"",
+        "h_empty": r"COMPILE ERROR no lab2\.glsl in the submission",
+    }
+    check_lines(lines, expected)
+    rows = list(csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")))
+    expect([(row["name"], row["verdict"]) for row in rows] ==
+           [(n, re.match(r"PASS|FAIL|COMPILE ERROR|TIMEOUT|CRASH", expected[n]).group(0)) for n in sorted(expected)],
+           "grades.csv: one row per submission with its verdict")
+    expect([row["convention_only"] for row in rows] == ["no"] * len(rows),
+           "grades.csv: no failure is put down to a convention (the project fixes none)")
+    suite = ET.parse(os.path.join(out, "grades.xml")).getroot().find("testsuite")
+    cases = {c.get("name"): c for c in suite.iter("testcase")}
+    expect(sorted(cases) == sorted(expected) and suite.get("tests") == "8" and suite.get("failures") == "2"
+           and suite.get("errors") == "4", "grades.xml: one JUnit testcase per submission, 2 failures, 4 errors")
+    expect(all(cases[n].find("failure") is None and cases[n].find("error") is None for n in ("a_correct", "e_convention"))
+           and cases["c_pdf_2pi"].find("failure").get("type") == "FAIL"
+           and cases["g_crash"].find("error").get("type") == "CRASH", "grades.xml: each testcase's outcome and type")
+
+
+def lab4(subs, out, work):
+    os.makedirs(subs)
+    lab4_fixtures(subs)
+    check_lines(grade(4, subs, out, work, "300"), {  # no endless loop among them
+        "a_correct": r"PASS",
+        "b_pdf_doubled": r"FAIL .*light sampling: the mean of 1/pdf is the solid angle .* -> .*",
+        "c_pdf_mismatch": r"FAIL .*light sampling: triangle_light_pdf is d\^2 / \(cos_y area\) times the pick.* -> .*",
+    })
 
 
 def main():
@@ -83,43 +184,13 @@ def main():
             r = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
             expect(r.returncode == 2 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
                    and r.stderr.startswith("grade_lab: "), f"bad usage ({what}) exits 2 with one line", r.stderr)
-        fixtures(subs)
-        start = time.monotonic()
-        r = subprocess.run([sys.executable, TOOL, "2", subs, "--out", out, "--work", work, "--timeout", TIMEOUT],
-                           capture_output=True, text=True)
-        print(f"grading took {time.monotonic() - start:.0f} s")
-        print(r.stdout + r.stderr)
-        expect(r.returncode == 0, "grade_lab.py ran and exits 0")
-        lines = dict(line.split(": ", 1) for line in r.stdout.splitlines())
-        expected = {
-            "a_correct": r"PASS",
-            "b_syntax_error": r"COMPILE ERROR labs/lab2\.glsl:\d+(:\d+)?: error: .*",
-            "c_pdf_2pi": r"FAIL (?!\(convention\)).*stage2: furnace box.*->.*",
-            "d_theta_uniform": r"FAIL .*sampling: uniform and cosine hemisphere samples fit their pdfs \(chi-square\) -> .*",
-            "e_convention": r"FAIL \(convention\) sampling: the inverses undo the samplers -> [^;]*",
-            "f_endless_loop": r"TIMEOUT after \S+ s in \".*\"",
-            "g_crash": r"CRASH SIGSEGV in \".*\"",
-            "h_empty": r"COMPILE ERROR no lab2\.glsl in the submission",
-        }
-        expect(list(lines) == sorted(expected), "one line per submission, in the order of the names")
-        for name, pattern in expected.items():
-            expect(re.fullmatch(pattern, lines.get(name, "")) is not None, f"{name}: {pattern}", lines.get(name, ""))
-        rows = list(csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")))
-        for row in rows:
-            print(f"{row['name']}: {row['verdict']}, build {row['build_seconds']} s, tests {row['test_seconds']} s")
-        expect([(row["name"], row["verdict"]) for row in rows] ==
-               [(n, re.match(r"PASS|FAIL|COMPILE ERROR|TIMEOUT|CRASH", expected[n]).group(0)) for n in sorted(expected)],
-               "grades.csv: one row per submission with its verdict")
-        expect([row["convention_only"] for row in rows if row["name"] in ("c_pdf_2pi", "e_convention")] == ["no", "yes"],
-               "grades.csv: the convention mistake is told from the wrong estimator")
-        suite = ET.parse(os.path.join(out, "grades.xml")).getroot().find("testsuite")
-        cases = {c.get("name"): c for c in suite.iter("testcase")}
-        expect(sorted(cases) == sorted(expected) and suite.get("tests") == "8" and suite.get("failures") == "3"
-               and suite.get("errors") == "4", "grades.xml: one JUnit testcase per submission, 3 failures, 4 errors")
-        expect(cases["a_correct"].find("failure") is None and cases["a_correct"].find("error") is None
-               and cases["e_convention"].find("failure").get("type") == "FAIL convention"
-               and cases["g_crash"].find("error").get("type") == "CRASH", "grades.xml: each testcase's outcome and type")
+        labs = os.environ.get("PT_GRADE_TEST_LABS", "2,4").split(",")
+        if "2" in labs:
+            lab2(subs, out, work)
+        if "4" in labs:
+            lab4(os.path.join(tmp, "submissions_lab4"), os.path.join(tmp, "out_lab4"), work + "_lab4")
     return 0
+
 
 
 if __name__ == "__main__":

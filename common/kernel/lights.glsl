@@ -1,9 +1,10 @@
 // Light sampling for stage4 (Eq. 5, corrected by erratum 5): pick a light in proportion
 // to its power (the table built at load), then a point on it: uniform on a triangle's
-// area, a direction in the cone a sphere subtends, the position of a point light (a
-// delta), or a cosine-weighted direction of the uniform sky. Each sample carries
-// Le / (pdf in solid angle x probability of the pick): the geometry term cos_y / d^2 and
-// the area pdf 1 / A that the printed Eq. (5) lacks are in that pdf.
+// area (lab 4's sampler and pdf, in triangle_light.glsl), a direction in the cone a sphere
+// subtends, the position of a point light (a delta), or a cosine-weighted direction of the
+// uniform sky. Each sample carries Le / (pdf in solid angle x probability of the pick): the
+// geometry term cos_y / d^2 and the area pdf 1 / A that the printed Eq. (5) lacks are in
+// that pdf.
 // stage5_mis (beyond the article) samples triangles by the solid angle they subtend
 // instead, and needs each strategy's pdf for any direction (light_pdf, at the end; its
 // triangles' part, triangle_light_pdf_by_solid_angle, is lab 6's and defined in mis.glsl).
@@ -236,20 +237,10 @@ LightSample sample_light(vec3 p, vec3 n) {
   return sample_light_by(p, n, kTriangleByArea);
 }
 
-// The pdf (solid angle x pick probability) with which sample_light picks, from a point,
-// the direction wi that meets the emissive triangle `index` at distance dist, placing its
-// point by area: what a light sample's pdf must equal (the tests check it), and light_pdf's
-// answer where stage5 samples a triangle by area too.
-float triangle_light_pdf(uint index, vec3 wi, float dist) {
-  Triangle tri = triangles[index];
-  if (tri.light == kNoLight) return 0.0f;
-  vec3 c = cross(vec3(tri.p1 - tri.p0), vec3(tri.p2 - tri.p0));
-  float area = 0.5f * length(c);
-  float cos_y = dot(-wi, normalize(c));
-  if (materials[tri.material].double_sided != 0u) cos_y = abs(cos_y);
-  if (!(cos_y > 0.0f)) return 0.0f;
-  return dist * dist / (cos_y * area) * light_pick_probability(tri.light);
-}
+// The pdf (solid angle x pick) with which sample_light draws the direction wi that meets the
+// triangle `index` at distance dist, by area (0 if no light or facing away): defined in
+// triangle_light.glsl, or by labs/lab4.glsl in lab 4's build (cmake/Labs.cmake).
+float triangle_light_pdf(uint index, vec3 wi, float dist);
 
 // The pdf (solid angle x pick probability) with which sample_light_by(p, n,
 // kTriangleBySolidAngle) draws the direction wi from p that meets the triangle `index` at

@@ -102,6 +102,38 @@ TEST_CASE("light sampling: the sampled point's pdf equals the pdf its evaluation
   CHECK(checked > 500);
 }
 
+// Held back from the students' copy (tag [held_back], tools/make_lab_handout.py,
+// docs/labs/teachers.md): it spells out lab 4's triangle_light_pdf, which the handout asks for.
+TEST_CASE("light sampling: triangle_light_pdf is d^2 / (cos_y area) times the pick, 0 for a back face or no light",
+          "[stage4][lights][held_back]") {
+  pt::Scene s;
+  uint one_sided = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(1.0f)));
+  uint two_sided = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(2.0f, 1.0f, 3.0f), true));
+  uint wall = s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+  s.add_triangle({0, 2, 0}, {2, 2, 0}, {0, 2, 2}, one_sided);     // area 2, front face down (-y)
+  s.add_triangle({0, -1, 0}, {3, -1, 0}, {0, -1, 1}, two_sided);  // area 1.5, front face down
+  s.add_triangle({5, 0, 0}, {6, 0, 0}, {5, 1, 0}, wall);          // no light
+  pt::build_light_table(s);
+  kernel::bind_scene(s);
+  REQUIRE(s.lights.size() == 2);
+  const double area[2] = {2.0, 1.5};
+  // From p to points y of each light: d^2 / (|cos_y| area) times the light's pick probability.
+  for (glm::vec3 p : {glm::vec3(0.3f, 0.1f, 0.2f), glm::vec3(-1.0f, 0.5f, 2.0f)}) {
+    for (int t = 0; t < 2; t++) {
+      for (glm::vec2 b : {glm::vec2(0.2f, 0.3f), glm::vec2(0.6f, 0.1f), glm::vec2(0.05f, 0.9f)}) {
+        glm::vec3 y = (1.0f - b.x - b.y) * s.triangles[t].p0 + b.x * s.triangles[t].p1 + b.y * s.triangles[t].p2;
+        double d = glm::length(glm::dvec3(y - p)), cos_y = std::abs(double(y.y - p.y)) / d;
+        double want = d * d / (cos_y * area[t]) * s.lights[s.triangles[t].light].pick;
+        INFO("triangle " << t << ", p " << p.x << " " << p.y << " " << p.z << ", y " << y.x << " " << y.y << " " << y.z);
+        CHECK(kernel::triangle_light_pdf(uint(t), glm::normalize(y - p), float(d)) == Approx(want).epsilon(1e-4));
+      }
+    }
+  }
+  // The one-sided light seen from above (its back), and a triangle that is no light: 0.
+  CHECK(kernel::triangle_light_pdf(0u, glm::vec3(0, -1, 0), 1.0f) == 0.0f);
+  CHECK(kernel::triangle_light_pdf(2u, glm::vec3(0, 0, -1), 1.0f) == 0.0f);
+}
+
 TEST_CASE("light sampling: lights are picked in proportion to their power", "[stage4][lights]") {
   pt::Scene s;
   uint dim = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(1.0f)));

@@ -5,6 +5,8 @@
 // the real samplers, and every right answer passes them whatever its convention (which
 // number sets theta, u or 1 - u). The checks: the chi-square fit of the directions to the
 // pdf, directions of unit length, and the pdf equal to the mapping's own density.
+// Held back from the labs' handouts ([held_back], docs/labs/teachers.md): its right answers
+// are labs 2 and 3's.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -57,7 +59,7 @@ std::string verdict(const Answer& a, std::uint32_t seed) {
 
 }  // namespace
 
-TEST_CASE("sampler checks: right answers pass whatever their convention", "[sampling][mutants]") {
+TEST_CASE("sampler checks: right answers pass whatever their convention", "[sampling][mutants][held_back]") {
   const std::vector<Answer> right = {
       {"uniform, cos theta = u.x", [](glm::vec2 u) { return direction(u.x, 2.0f * kPi * u.y); }, uniform_pdf},
       {"uniform, cos theta = 1 - u.x", [](glm::vec2 u) { return direction(1.0f - u.x, 2.0f * kPi * u.y); }, uniform_pdf},
@@ -74,7 +76,7 @@ TEST_CASE("sampler checks: right answers pass whatever their convention", "[samp
   }
 }
 
-TEST_CASE("sampler checks: every known-wrong answer fails them", "[sampling][mutants]") {
+TEST_CASE("sampler checks: every known-wrong answer fails them", "[sampling][mutants][held_back]") {
   const std::vector<Answer> wrong = {
       {"uniform, the radius forgotten: (cos phi, sin phi, z)",
        [](glm::vec2 u) { return glm::vec3(std::cos(2.0f * kPi * u.y), std::sin(2.0f * kPi * u.y), u.x); }, uniform_pdf},
