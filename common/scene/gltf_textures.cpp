@@ -125,6 +125,7 @@ class OpenedImage {
     if (!input_) {
       fail(file, what + " cannot be decoded (" + short_error(why) + "): the image is damaged or truncated; re-export it");
     }
+    width_ = input_->width(), height_ = input_->height(), channels_ = input_->channels();
     if (input_->channels() < 1 || input_->channels() > 4) {
       fail(file, what + " has " + std::to_string(input_->channels()) +
                      " channels; glTF images have 1 to 4: convert it to RGB or RGBA and re-export");
@@ -140,17 +141,17 @@ class OpenedImage {
     }
   }
 
-  std::uint32_t width() const { return std::uint32_t(input_->width()); }
-  std::uint32_t height() const { return std::uint32_t(input_->height()); }
+  std::uint32_t width() const { return std::uint32_t(width_); }
+  std::uint32_t height() const { return std::uint32_t(height_); }
   std::uint64_t texels() const { return std::uint64_t(width()) * height(); }
 
   // Reads the texels as 8-bit RGBA into out[0 .. width * height), a few rows at a time.
   void decode(std::uint32_t* out) {
-    const int channels = input_->channels();
+    const int channels = channels_;
     const int rows_per_read = 64;
-    std::vector<unsigned char> rows(std::size_t(input_->width()) * channels * rows_per_read);
-    for (int y0 = 0; y0 < input_->height(); y0 += rows_per_read) {
-      const int y1 = std::min(input_->height(), y0 + rows_per_read);
+    std::vector<unsigned char> rows(std::size_t(width_) * channels * rows_per_read);
+    for (int y0 = 0; y0 < height_; y0 += rows_per_read) {
+      const int y1 = std::min(height_, y0 + rows_per_read);
       bool read;
       {
         QuietStderr quiet;
@@ -160,12 +161,12 @@ class OpenedImage {
         fail(file_, what_ + " cannot be decoded (" + short_error(input_->error()) +
                         "): the image is damaged or truncated; re-export it");
       }
-      const std::size_t n = std::size_t(y1 - y0) * std::size_t(input_->width());
+      const std::size_t n = std::size_t(y1 - y0) * std::size_t(width_);
       for (std::size_t i = 0; i < n; ++i) {
         const unsigned char* p = &rows[i * channels];
         std::uint32_t r = p[0], g = channels >= 3 ? p[1] : p[0], b = channels >= 3 ? p[2] : p[0];
         std::uint32_t a = channels == 2 ? p[1] : channels == 4 ? p[3] : 255u;
-        out[std::size_t(y0) * std::size_t(input_->width()) + i] = r | g << 8 | b << 16 | a << 24;
+        out[std::size_t(y0) * std::size_t(width_) + i] = r | g << 8 | b << 16 | a << 24;
       }
     }
   }
@@ -173,6 +174,7 @@ class OpenedImage {
  private:
   std::string file_, what_;
   std::unique_ptr<ImageReader> input_;
+  int width_ = 0, height_ = 0, channels_ = 0;  // the header's, read once
 };
 
 // The encoded bytes of model.images[index]: its bufferView's, or those keep_image_bytes kept.
