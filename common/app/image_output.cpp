@@ -54,6 +54,10 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), extension_(lo
                                     "'; use a name ending in .exr, .png or .hdr");
   }
   if (fs::is_directory(path_)) fail(path_, "it is a folder");
+  if (extension_ != "exr") {  // its writer is OpenImageIO's module: found now, not after the render
+    std::string why;
+    if (!openimageio(why)) throw Error(kExitOutput, "cannot write '" + path_ + "': " + why);
+  }
   std::error_code ec;
   fs::path folder = folder_of(path_);
   fs::create_directories(folder, ec);

@@ -32,7 +32,8 @@ const ImageCodec* openimageio(std::string& why) {
     if (!handle) {
       const char* e = ::dlerror();
       failure = "cannot load " + module + " (" + (e ? e : "no reason given") +
-                "): rebuild the project (cmake --build build) so that it lies beside the program";
+                "): it is built into build/bin beside the programs; keep it beside this one (or write an .exr, "
+                "which does not need it)";
       return;
     }
     auto entry = reinterpret_cast<ImageCodecEntry>(::dlsym(handle, PT_IMAGE_CODEC_ENTRY));

@@ -282,3 +282,15 @@ TEST_CASE("cli: a checkpoint that cannot be written is said once and the render 
   CHECK(fs::is_directory(out + ".ckpt"));  // not the program's to remove
   fs::remove_all(out + ".ckpt");
 }
+
+TEST_CASE("cli: a program copied away from OpenImageIO's module refuses a .png in one line and writes .exr",
+          "[reliability][image]") {
+  const fs::path alone = scratch() / "alone";
+  fs::create_directories(alone);
+  fs::copy_file(PT_STAGE1_BIN, alone / "stage1_raycast", fs::copy_options::overwrite_existing);
+  const std::string program = (alone / "stage1_raycast").string(), common = "--backend cpu --width 4 --height 4 --out ";
+  Run png = pt_test::run_program(program, common + path("alone.png"), "", scratch());
+  pt_test::check_error(png, "stage1_raycast", 5, "pt_openimageio.so");
+  CHECK(!fs::exists(path("alone.png")));
+  CHECK(pt_test::run_program(program, common + path("alone.exr"), "", scratch()).code == 0);
+}
