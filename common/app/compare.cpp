@@ -60,7 +60,7 @@ FilmPart read_comparable(const std::string& path) {
                                       "stage wrote with --out; render it again with --out NAME.exr and --spp 2 "
                                       "or more");
   }
-  return read_film_part(path);
+  return film_part_of(image, path);
 }
 
 void check_comparable(const Film& ref, const std::string& ref_name, const Film& test, const std::string& test_name) {

@@ -82,6 +82,10 @@ FilmPart read_film_part(const std::string& path) {
   if (!read_exr(path, image, why)) {
     refuse(path, "cannot be read as an .exr (" + why + "); give the .exr parts --out wrote");
   }
+  return film_part_of(image, path);
+}
+
+FilmPart film_part_of(const ExrImage& image, const std::string& path) {
   auto text = [&](const char* name) {
     const std::string value = image.attribute(name);
     if (value.empty()) {

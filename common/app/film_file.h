@@ -16,6 +16,7 @@
 
 namespace pt {
 
+struct ExrImage;
 struct Scene;
 
 // The samples FIRST ... FIRST + COUNT - 1 of every pixel.
@@ -55,6 +56,8 @@ extern const char* const kFilmSumChannels[4];
 
 // Reads a part, or throws pt::Error(kExitBadScene) naming the file and what is missing.
 FilmPart read_film_part(const std::string& path);
+// The part an .exr already read holds (read_film_part without the reading).
+FilmPart film_part_of(const ExrImage& image, const std::string& path);
 
 // Adds parts of one render up, in the order of their first samples. Throws
 // pt::Error(kExitBadScene) naming the file and the field for a part of another render

@@ -93,8 +93,7 @@ ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const I
     for (const char* name : kFilmSumChannels) {
       for (const char* half : {".hi", ".lo"}) image.channels.push_back(std::string("film.") + name + half);
     }
-    image.text.emplace_back("pt:seed", std::to_string(meta.identity.seed));  // what the merge compares
-    image.text.emplace_back("pt:scene_hash", meta.identity.scene_hash);
+    image.text.emplace_back("pt:scene_hash", meta.identity.scene_hash);  // what the merge compares
     image.text.emplace_back("pt:options", meta.identity.options);
     image.text.emplace_back("pt:samples", format_ranges(meta.ranges));
   }
@@ -131,7 +130,7 @@ void OutputFile::write(const std::vector<float>& rgb, int width, int height, con
       {"pt:backend", meta.backend},
       {"pt:scene", meta.scene},
       {"pt:spp", std::to_string(meta.spp)},
-      {"pt:seed", std::to_string(meta.seed)},
+      {"pt:seed", std::to_string(meta.film ? meta.identity.seed : meta.seed)},  // a film's: what the merge compares
       {"pt:seconds", std::to_string(meta.seconds)},
   };
   const std::string description = meta.stage + " " + meta.scene + ", " + std::to_string(meta.spp) + " spp, seed " +
@@ -143,9 +142,7 @@ void OutputFile::write(const std::vector<float>& rgb, int width, int height, con
   bool ok;
   if (extension_ == "exr") {
     ExrImage image = exr_image(rgb, width, height, meta);
-    for (const auto& attribute : text) {  // the film's seed, when there is one, wins
-      if (image.attribute(attribute.first).empty()) image.text.push_back(attribute);
-    }
+    image.text.insert(image.text.begin(), text.begin(), text.end());
     image.text.emplace_back("comments", description);  // EXR's own name for a description
     ok = write_exr(tmp.string(), image, why);
   } else {

@@ -126,16 +126,16 @@ class OpenedImage {
       fail(file, what + " cannot be decoded (" + short_error(why) + "): the image is damaged or truncated; re-export it");
     }
     width_ = input_->width(), height_ = input_->height(), channels_ = input_->channels();
-    if (input_->channels() < 1 || input_->channels() > 4) {
-      fail(file, what + " has " + std::to_string(input_->channels()) +
+    if (channels_ < 1 || channels_ > 4) {
+      fail(file, what + " has " + std::to_string(channels_) +
                      " channels; glTF images have 1 to 4: convert it to RGB or RGBA and re-export");
     }
-    if (input_->width() <= 0 || input_->height() <= 0 || input_->depth() != 1) {
-      fail(file, what + " has no texels (" + std::to_string(input_->width()) + " x " + std::to_string(input_->height()) +
+    if (width_ <= 0 || height_ <= 0 || input_->depth() != 1) {
+      fail(file, what + " has no texels (" + std::to_string(width_) + " x " + std::to_string(height_) +
                      "): re-export it");
     }
-    if (std::uint64_t(input_->width()) > kMaxTextureSize || std::uint64_t(input_->height()) > kMaxTextureSize) {
-      fail(file, what + " is " + std::to_string(input_->width()) + " x " + std::to_string(input_->height()) +
+    if (std::uint64_t(width_) > kMaxTextureSize || std::uint64_t(height_) > kMaxTextureSize) {
+      fail(file, what + " is " + std::to_string(width_) + " x " + std::to_string(height_) +
                      " texels, more than the " + std::to_string(kMaxTextureSize) + " x " +
                      std::to_string(kMaxTextureSize) + " an image may have: downscale it and re-export");
     }
