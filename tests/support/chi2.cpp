@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace pt::test {
@@ -201,6 +202,8 @@ Chi2Result chi2_test(const std::function<glm::vec3(glm::vec2)>& sample, const st
       << expected[i] << ";";
   }
   r.table = t.str();
+  r.theta_bins = o.theta_bins, r.phi_bins = o.phi_bins;
+  r.observed = std::move(observed), r.expected = std::move(expected);
   return r;
 }
 

@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -31,6 +32,10 @@ struct Chi2Result {
   std::uint64_t not_unit = 0;    // samples whose length is not 1 (to 1e-4): not directions at all
   std::uint64_t non_finite = 0;  // samples with a NaN or infinite component (binned nowhere)
   std::string table;      // the worst bins, for the failure message
+  // The histogram against the pdf, bin by bin (row: cos theta from -1 up, column: phi), for
+  // the picture a student looks at (histogram_picture.h).
+  int theta_bins = 0, phi_bins = 0;
+  std::vector<double> observed, expected;
 };
 
 // sample: a uniform point of [0,1)^2 to a unit direction; pdf: its solid-angle density.

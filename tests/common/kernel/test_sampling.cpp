@@ -11,6 +11,7 @@
 #include "common/scene/scene.h"
 #include "cpu/kernel_prelude.h"
 #include "tests/support/chi2.h"
+#include "tests/support/histogram_picture.h"
 #include "tests/support/statistics.h"
 #include "tests/support/test_render.h"
 
@@ -40,8 +41,14 @@ glm::vec3 incident(double degrees) {
   return glm::vec3(float(std::sin(t)), 0.0f, float(std::cos(t)));
 }
 
-void require_fit(const Chi2Result& r) {
+// The histogram against the pdf, written for the student to look at whether the test
+// passes or not (docs/labs/lab2.md): its place is in the failure message.
+void require_fit(const Chi2Result& r, const std::string& picture = "") {
   INFO(r.table);
+  std::string why = "no picture asked for";
+  const std::string path = picture.empty() ? "" : test_picture_path(picture);
+  const bool written = !path.empty() && write_histogram_picture(path, r, why);
+  INFO((written ? "the histogram against the pdf: " + path : "no histogram picture: " + why));
   CHECK(r.not_unit == 0);  // a direction is a unit vector: the bins alone would not see its length
   CHECK(r.non_finite == 0);
   CHECK(r.p_value > kAlphaPerTest);
@@ -55,12 +62,12 @@ TEST_CASE("sampling: uniform and cosine hemisphere samples fit their pdfs (chi-s
   Chi2Result uniform = chi2_test(kernel::sample_uniform_hemisphere,
                                  [](glm::dvec3 w) { return w.z > 0.0 ? double(kernel::uniform_hemisphere_pdf()) : 0.0; },
                                  o, test_seed(1));
-  require_fit(uniform);
+  require_fit(uniform, "uniform_hemisphere.png");
   CHECK(uniform.integral == Approx(1.0).epsilon(1e-6));
   Chi2Result cosine = chi2_test(kernel::sample_cosine_hemisphere,
                                 [](glm::dvec3 w) { return double(kernel::cosine_hemisphere_pdf(float(w.z))); }, o,
                                 test_seed(2));
-  require_fit(cosine);
+  require_fit(cosine, "cosine_hemisphere.png");
   CHECK(cosine.integral == Approx(1.0).epsilon(1e-6));
 }
 
