@@ -28,12 +28,17 @@ endif()
 # Which file defines the functions each lab asks for: the reference, or the student's.
 set(PT_KERNEL_GENERATED_DIR ${PROJECT_BINARY_DIR}/generated)
 set(definitions "")
-foreach(pair 2:common/kernel/uniform_hemisphere.glsl 3:common/kernel/cosine_hemisphere.glsl
-             4:common/kernel/triangle_light.glsl 5:common/kernel/box_slab.glsl 6:common/kernel/mis.glsl)
+# A lab may ask for the functions of several files (lab 2: the uniform estimator and the
+# roulette; lab 4: the triangle light and the emission rule); its own file replaces them all.
+foreach(pair 2:common/kernel/uniform_hemisphere.glsl 2:common/kernel/russian_roulette.glsl
+             3:common/kernel/cosine_hemisphere.glsl 4:common/kernel/triangle_light.glsl
+             4:common/kernel/emission_rule.glsl 5:common/kernel/box_slab.glsl 6:common/kernel/mis.glsl)
   string(REGEX REPLACE ":.*" "" lab ${pair})
   string(REGEX REPLACE ".*:" "" reference ${pair})
   if(PT_LAB EQUAL lab)
-    string(APPEND definitions "#include \"labs/lab${lab}.glsl\"\n")
+    if(NOT definitions MATCHES "labs/lab${lab}.glsl")
+      string(APPEND definitions "#include \"labs/lab${lab}.glsl\"\n")
+    endif()
   else()
     string(APPEND definitions "#include \"${reference}\"\n")
   endif()

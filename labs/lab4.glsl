@@ -1,9 +1,9 @@
 // Lab 4 (docs/labs/lab4.md): light sampling, the article's Eq. (5) corrected (erratum 5):
 // the direct light from an emissive triangle needs the geometry term cos_y / d^2 and the
 // area pdf 1 / A that the printed formula lacks. Write the sample of one triangle light,
-// and the pdf of a direction that meets it. Built instead of
-// common/kernel/triangle_light.glsl when you configure with -DPT_LAB=4. Graded by
-// `ctest -L lab4`.
+// the pdf of a direction that meets it, and the rule that keeps a light's emission from
+// being counted twice (erratum 6). Built instead of common/kernel/triangle_light.glsl and
+// emission_rule.glsl when you configure with -DPT_LAB=4. Graded by `ctest -L lab4`.
 // Written in the GLSL/C++ subset (docs/README.md): it runs on both backends.
 
 #include "labs/lab_support.glsl"
@@ -32,4 +32,15 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {
 float triangle_light_pdf(uint index, vec3 wi, float dist) {
   // Your code here. Remove the line below when you are done.
   return PT_LAB_NOT_WRITTEN(4, triangle_light_pdf) * float(index) * dist * wi.x;
+}
+
+// Stage4 adds a light sample at every hit that is not a mirror or glass, and its bounce
+// rays then go on as in stage3. Return whether the emission Le of the surface (or the sky)
+// that a ray meets enters the sum: depth is 0 for the camera ray and k after k bounces,
+// after_delta tells whether the last bounce was a mirror or glass (a delta lobe, where no
+// light sample is taken). Count each light's contribution to a path once, not twice, and
+// not zero times.
+bool counts_emission(uint depth, bool after_delta) {
+  // Your code here. Remove the line below when you are done.
+  return PT_LAB_NOT_WRITTEN(4, counts_emission) == float(depth) && after_delta;
 }

@@ -4,12 +4,14 @@
 // that comes after it, lab 6 stage5_mis's multiple importance sampling.
 //   PT_LAB=N (CMake -DPT_LAB=N, the student's build): lab N's stub, fixed at compile time.
 //   PT_LAB_CHECK (CMake -DPT_LAB_CHECK=ON, the CI's check build): the stub of lab
-//   $PT_LAB_STUB, chosen at run time, so one build checks all six labs.
+//   $PT_LAB_STUB, chosen at run time, so one build checks all six labs; or the known-wrong
+//   answer $PT_LAB_MUTANT (labs/mutants.h).
 #pragma once
 
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 
 #ifndef PT_LAB
@@ -41,6 +43,22 @@ inline float not_written(int lab, const char* function) {
                  function, lab, lab);
   }
   return std::numeric_limits<float>::quiet_NaN();
+}
+
+// The check build's known-wrong answers (labs/mutants.h): whether PT_LAB_MUTANT names
+// mutant `name` of lab `lab`, said once on stderr the first time it is used, so that
+// tools/expect_lab_failure.sh knows the mutant ran.
+inline bool mutant_is(int lab, const char* name) {
+  static const char* const chosen = [] {
+    const char* s = std::getenv("PT_LAB_MUTANT");
+    return s ? s : "";
+  }();
+  if (chosen[0] == '\0' || std::strcmp(chosen, name) != 0) return false;
+  static std::atomic<bool> said{false};
+  if (!said.exchange(true)) {
+    std::fprintf(stderr, "lab %d: mutant %s runs in place of the reference (labs/mutants.h)\n", lab, name);
+  }
+  return true;
 }
 
 }  // namespace pt::lab

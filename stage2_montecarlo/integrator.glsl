@@ -40,7 +40,7 @@ vec3 Li(Ray ray) {
       // Eq. (3) with N = 1: one direction uniform over the hemisphere, weighted
       // (2 pi / N) f cos, 2 pi = 1 / pdf (erratum 1: the article prints 1 / (2 pi N)).
       wi = sample_uniform_hemisphere(sample_2d());
-      beta *= (1.0f / uniform_hemisphere_pdf()) * eval_lobe(lobe, material, wo, wi) * wi.z;
+      beta *= uniform_bounce_weight(eval_lobe(lobe, material, wo, wi), wi);
     }
 
     float survive = russian_roulette(beta, params.roulette);

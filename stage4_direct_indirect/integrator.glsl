@@ -16,20 +16,20 @@
 vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path
   vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
-  bool specular = true;    // camera ray, or the last bounce was a delta (mirror, glass)
+  bool after_delta = false;  // the last bounce was a delta (mirror, glass)
   for (uint depth = 0u;; depth++) {
     if (at_depth_cap(depth)) break;  // a safety net far beyond what roulette reaches
     Hit hit = intersect_scene(ray, kInfinity);
     if (hit.kind == kPrimNone) {
       // The sky is a light too: after a non-delta bounce light sampling counted it.
-      if (specular) L += beta * vec3(params.sky);
+      if (counts_emission(depth, after_delta)) L += beta * vec3(params.sky);
       break;
     }
     Surface surface = surface_at(ray, hit);
     Material material = surface_material(surface);
     // Le only where light sampling could not have found it (erratum 6): on camera rays and
     // after delta bounces; everywhere else it was counted as direct light already.
-    if (specular) L += beta * emitted_radiance(material, surface.front);
+    if (counts_emission(depth, after_delta)) L += beta * emitted_radiance(material, surface.front);
 
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
     vec3 n = surface.front ? surface.n : -surface.n;
@@ -41,7 +41,7 @@ vec3 Li(Ray ray) {
       DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, sample_1d());
       wi = bounce.wi;
       beta *= bounce.weight;
-      specular = true;
+      after_delta = true;
     } else {
       // Eq. (5), corrected (erratum 5): direct light f Le V cos_x cos_y / d^2 / pdf_A,
       // with the geometry term and the pdf inside the light sample's weight.
@@ -58,7 +58,7 @@ vec3 Li(Ray ray) {
       if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
       wi = s.wi;
       beta *= weight;
-      specular = false;
+      after_delta = false;
     }
 
     float survive = russian_roulette(beta, params.roulette);

@@ -21,8 +21,8 @@ endfunction()
 
 # Erratum 1: Eq. (3)'s factor as printed, 1 / (2 pi N), instead of 2 pi / N (N = 1).
 pt_printed_formula(stage2_eq3 stage2_montecarlo
-  "beta *= (1.0f / uniform_hemisphere_pdf()) * eval_lobe"
-  "beta *= (1.0f / (2.0f * kPi)) * eval_lobe")
+  "beta *= uniform_bounce_weight(eval_lobe(lobe, material, wo, wi), wi);"
+  "beta *= (1.0f / (2.0f * kPi)) * eval_lobe(lobe, material, wo, wi) * wi.z;")
 # Erratum 2: Eq. (4) as printed, the factor 1 / (2 pi) and no division by the pdf.
 pt_printed_formula(stage3_eq4 stage3_importance
   "max(s.wi.z, 0.0f) / s.pdf;"

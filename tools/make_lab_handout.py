@@ -11,7 +11,9 @@ repository without .git and build folders, in which
   - the teacher's held-back tests, every Catch2 TEST_CASE in tests/ tagged [held_back] (with
     the comment lines just above it; a file whose every test is held back keeps only its
     opening comment), are removed: they grade the class (tools/grade_lab.py builds the
-    teacher's tree), but the students never see them (docs/labs/teachers.md).
+    teacher's tree), but the students never see them (docs/labs/teachers.md);
+  - the known-wrong answers of labs/mutants.h (each is an answer with one thing wrong) are
+    removed too, down to the file's opening comment (the check build then has no mutants).
 usage: tools/make_lab_handout.py N DEST     (DEST must not exist yet)"""
 import os
 import re
@@ -24,14 +26,14 @@ import docs_check  # noqa: E402
 
 # What a function of each return type returns in the handout in place of its body; lab N's
 # build never compiles it (it compiles labs/labN.glsl instead).
-DEFAULTS = {"vec2": "vec2(0.0f)", "vec3": "vec3(0.0f)", "float": "0.0f", "LightSample": "no_light()"}
+DEFAULTS = {"vec2": "vec2(0.0f)", "vec3": "vec3(0.0f)", "float": "0.0f", "bool": "false", "LightSample": "no_light()"}
 # The files whose functions each lab asks for: what its build replaces by labs/labN.glsl
 # (cmake/Labs.cmake; lab 1: stage1's integrator, pt_add_stage's LAB option).
 REFERENCE_FILES = {
     1: ["stage1_raycast/integrator.glsl"],
-    2: ["common/kernel/uniform_hemisphere.glsl"],
+    2: ["common/kernel/uniform_hemisphere.glsl", "common/kernel/russian_roulette.glsl"],
     3: ["common/kernel/cosine_hemisphere.glsl"],
-    4: ["common/kernel/triangle_light.glsl"],
+    4: ["common/kernel/triangle_light.glsl", "common/kernel/emission_rule.glsl"],
     5: ["common/kernel/box_slab.glsl"],
     6: ["common/kernel/mis.glsl"],
 }
@@ -43,6 +45,8 @@ SOURCE_ENDINGS = (".glsl", ".comp", ".h", ".cpp")
 # A held-back test: a Catch2 test case whose tags (up to the line that opens its body) hold [held_back].
 TEST_CASE = re.compile(r"^(TEST_CASE|TEST_CASE_METHOD|SCENARIO)\s*\(")
 HELD_BACK = "[held_back]"
+# Files held back whole: the mutants, each an answer of some lab with one mistake in it.
+HELD_BACK_FILES = ["labs/mutants.h"]
 
 
 def strip_sources(dest, lab):
@@ -153,6 +157,22 @@ def strip_held_back(dest):
     return removed
 
 
+def strip_held_back_files(dest):
+    """Cuts each of HELD_BACK_FILES down to its opening comment; returns those it cut."""
+    cut = []
+    for rel in HELD_BACK_FILES:
+        path = os.path.join(dest, rel)
+        if not os.path.exists(path):
+            continue
+        lines = docs_check.read_lines(path)
+        head = next((k for k, line in enumerate(lines) if not line.startswith("//")), len(lines))
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write("\n".join(lines[:head] + ["// This handout holds none of them (tools/make_lab_handout.py, "
+                                                "docs/labs/teachers.md).", ""]))
+        cut.append(rel)
+    return cut
+
+
 def strip_docs(dest, lab, names):
     """Replaces the docs' excerpts of the removed functions by a note."""
     for md in docs_check.markdown_files(dest):
@@ -194,7 +214,7 @@ def main():
         return 1
     strip_docs(dest, lab, names)
     regions = strip_regions(dest, lab)
-    held_back = strip_held_back(dest)
+    held_back = strip_held_back(dest) + [(rel, 1) for rel in strip_held_back_files(dest)]
     # The shorter bodies move the lines below them: renumber the docs' line references.
     problems = docs_check.run(dest, update=True)
     if problems.errors:

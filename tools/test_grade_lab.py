@@ -3,7 +3,9 @@
 part of the article): bad usage exits 2 with one line; then labs 2 and 4 are graded on fixture
 submissions made here from the reference functions, which are renamed and called by wrappers,
 so that no line of their bodies is quoted here (the handout ships this file without them).
-Each submission must get its verdict line. Lab 2 (common/kernel/uniform_hemisphere.glsl):
+Each submission must get its verdict line; the other reference file of the lab (lab 2's
+roulette, lab 4's emission rule) is appended to each as it is. Lab 2
+(common/kernel/uniform_hemisphere.glsl, russian_roulette.glsl):
   a_correct          the reference                                  PASS
   b_syntax_error     a wrapper less a semicolon, graded right       COMPILE ERROR at labs/lab2.glsl
                      after a correct one (issue 24: the stale
@@ -16,7 +18,7 @@ Each submission must get its verdict line. Lab 2 (common/kernel/uniform_hemisphe
   g_crash            a read far out of the materials' bounds        CRASH SIGSEGV
   h_empty/           a folder without lab2.glsl                     COMPILE ERROR no lab2.glsl
 and grades.csv and grades.xml hold one row and one testcase per submission. Lab 4
-(common/kernel/triangle_light.glsl):
+(common/kernel/triangle_light.glsl, emission_rule.glsl):
   a_correct          the reference                                  PASS
   b_pdf_doubled      the sample's pdf twice the right one           FAIL, the mean of 1/pdf among the criteria
   c_pdf_mismatch     triangle_light_pdf twice the sample's pdf      FAIL, the held-back test among them
@@ -63,8 +65,15 @@ def with_wrappers(rel, renames, wrappers):
     return text[:at] + wrappers + "\n" + text[at:]
 
 
-def write(folder, files):
+def reference(rel):
+    return open(os.path.join(REPO, rel), encoding="utf-8").read()
+
+
+def write(folder, files, also=""):
+    """Writes each submission; a .glsl file gets `also` (the lab's other reference file) appended."""
     for rel, text in files.items():
+        if rel.endswith(".glsl"):
+            text += "\n" + also
         os.makedirs(os.path.dirname(os.path.join(folder, rel)), exist_ok=True)
         with open(os.path.join(folder, rel), "w", encoding="utf-8") as fh:
             fh.write(text)
@@ -80,7 +89,7 @@ def lab2_fixtures(folder):
                                            f"float uniform_hemisphere_pdf() {{\n  {pdf}\n}}\n")
 
     write(folder, {
-        "a_correct.glsl": open(os.path.join(REPO, rel), encoding="utf-8").read(),
+        "a_correct.glsl": reference(rel),
         "b_syntax_error.glsl": variant(sampler="return reference_sampler(u)"),
         "c_pdf_2pi.glsl": variant(pdf="return 2.0f * kPi;"),
         # The reference's cos(theta) is u.x: feeding it cos of a uniform angle makes theta uniform.
@@ -91,7 +100,7 @@ def lab2_fixtures(folder):
         # the sample: 0 * x is not folded away without -ffast-math).
         "g_crash.glsl": variant(sampler="return reference_sampler(u + vec2(0.0f * materials[100000000 + int(u.y)].metallic));"),
         "h_empty/README.txt": "lab2.glsl was forgotten\n",
-    })
+    }, also=reference("common/kernel/russian_roulette.glsl"))
 
 
 def lab4_fixtures(folder):
@@ -105,12 +114,12 @@ def lab4_fixtures(folder):
                              f"float triangle_light_pdf(uint index, vec3 wi, float dist) {{\n  {pdf}\n}}\n")
 
     write(folder, {
-        "a_correct.glsl": open(os.path.join(REPO, rel), encoding="utf-8").read(),
+        "a_correct.glsl": reference(rel),
         "b_pdf_doubled.glsl": variant(sample="return reference_sample(index, p, u, 2.0f * pick);"),
         # Only the pdf of a given direction is wrong: stage4 never calls it, the tests do, the
         # held-back one ([held_back], not in the handout) among them.
         "c_pdf_mismatch.glsl": variant(pdf="return 2.0f * reference_pdf(index, wi, dist);"),
-    })
+    }, also=reference("common/kernel/emission_rule.glsl"))
 
 
 def grade(lab, subs, out, work, timeout):

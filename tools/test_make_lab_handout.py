@@ -7,7 +7,7 @@ article's Eq. 2 to 5, lab 5 the BVH after it, lab 6 stage5_mis's MIS). For each 
     the teacher's tree (whitespace and // comments aside); every function the student's
     labs/labN.glsl defines has its reference among those functions;
   - the teacher's held-back tests (Catch2 tag [held_back]; the teacher's tree must hold one)
-    are in no handout;
+    are in no handout, nor the known-wrong answers of labs/mutants.h;
   - the handout's docs pass docs_check, the lab's stage and stage4 still compile to SPIR-V in
     that lab's build (configured with -DPT_LAB=N), and so do the files the tool cut a region
     from, and (in lab 4's build) the test files it cut held-back tests from.
@@ -171,6 +171,9 @@ def main():
                      and f'"{name}"' in open(os.path.join(dest, rel), encoding="utf-8").read()}
             expect(not left, f"lab {lab}: the handout has none of the {len(held_back)} held-back test(s)",
                    "\n".join(sorted(left)))
+            mutants = open(os.path.join(dest, "labs", "mutants.h"), encoding="utf-8").read()
+            expect("is_mutant(" in open(os.path.join(REPO, "labs", "mutants.h"), encoding="utf-8").read()
+                   and "is_mutant(" not in mutants, f"lab {lab}: the handout holds none of the mutants", mutants)
             r = subprocess.run([sys.executable, os.path.join(dest, "tools", "docs_check.py"), "--check"],
                                capture_output=True, text=True)
             expect(r.returncode == 0, f"lab {lab}: the handout's docs pass docs_check", r.stdout + r.stderr)

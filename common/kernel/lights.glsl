@@ -44,6 +44,11 @@ uint pick_light(float u) {
 // triangle_light.glsl, or by labs/lab4.glsl in lab 4's build (cmake/Labs.cmake).
 LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick);
 
+// Stage4's emission rule (erratum 6): whether a hit's Le, or the sky, enters the sum after
+// `depth` bounces, the last a delta (mirror, glass) or not. Defined in emission_rule.glsl,
+// or by labs/lab4.glsl in lab 4's build.
+bool counts_emission(uint depth, bool after_delta);
+
 // From inside (or on) a sphere light: a point uniform on its area, density 1 / (4 pi r^2);
 // light reaches the inside only from a double-sided emitter.
 LightSample sample_sphere_light_inside(Sphere s, vec3 p, vec2 u, float pick) {

@@ -16,12 +16,11 @@ bool is_finite(vec3 v) {
   return !any(isnan(v)) && !any(isinf(v));
 }
 
-// Returns what a surviving path is multiplied by (1 / p), or 0 to end it.
-float russian_roulette(vec3 beta, uint mode) {
-  float p = mode == kRouletteFixed ? 0.5f : min(1.0f, max_component(beta));
-  if (!(p > 0.0f) || sample_1d() >= p) return 0.0f;
-  return 1.0f / p;
-}
+// The roulette's step, declared here and defined in russian_roulette.glsl, or by
+// labs/lab2.glsl in lab 2's build (cmake/Labs.cmake): what a surviving path is multiplied
+// by (1 / p), or 0 to end it. mode: kRouletteFixed (the article's p = 1/2) or
+// kRouletteThroughput (p = min(1, the largest component of beta)).
+float russian_roulette(vec3 beta, uint mode);
 
 // The two other ways a path ends, both bookkeeping rather than the article's step, both
 // counted for the summary line. The depth cap: a safety net far beyond what roulette

@@ -37,6 +37,8 @@ vec3 frame_to_local(Frame f, vec3 v) {
 // Uniform over the hemisphere z > 0: density 1 / (2 pi) (stage2, Eq. 3).
 vec3 sample_uniform_hemisphere(vec2 u);
 float uniform_hemisphere_pdf();
+// What a uniformly sampled bounce multiplies the path by: (2 pi / N) f cos theta, N = 1.
+vec3 uniform_bounce_weight(vec3 f, vec3 wi);
 // Cosine-weighted over the hemisphere z > 0: density cos(theta) / pi (stage3, Eq. 4).
 vec3 sample_cosine_hemisphere(vec2 u);
 float cosine_hemisphere_pdf(float cos_theta);

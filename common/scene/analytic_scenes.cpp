@@ -48,8 +48,12 @@ Scene make_floor_light(const FloorLightScene& a) {
   uint light = s.add_material(make_diffuse(glm::vec3(0.0f), a.emission));
   float h = a.floor_half, l = a.light_half, y = a.light_height;
   add_quad(s, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, floor);   // facing +y
-  if (a.triangle) {
+  if (a.triangle && a.turned_away) {
+    s.add_triangle({-l, y, -l}, {l, y, l}, {l, y, -l}, light);  // facing +y
+  } else if (a.triangle) {
     s.add_triangle({-l, y, -l}, {l, y, -l}, {l, y, l}, light);  // facing -y
+  } else if (a.turned_away) {
+    add_quad(s, {-l, y, -l}, {-l, y, l}, {l, y, l}, {l, y, -l}, light);  // facing +y
   } else {
     add_quad(s, {-l, y, -l}, {l, y, -l}, {l, y, l}, {-l, y, l}, light);  // facing -y
   }

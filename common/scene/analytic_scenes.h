@@ -66,6 +66,8 @@ struct FloorLightScene {
   float camera_height = 0.5f;          // between floor and emitter
   float view_half = 1.5f;              // orthographic xmag = ymag
   bool triangle = false;               // a triangle emitter: the square's half (-a,-a) (a,-a) (a,a)
+  bool turned_away = false;            // the one-sided emitter faces up, away from the floor:
+                                       // nothing lights the floor, every pixel is 0
 };
 
 // builtin:floor_small_light and builtin:floor_large_light: FloorLightScene with the

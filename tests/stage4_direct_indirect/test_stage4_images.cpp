@@ -53,6 +53,12 @@ TEST_CASE("stage4: a diffuse floor under a square light and under a triangle lig
   check_floor_light(stage4::kernels(), test_seed(2350), true);
 }
 
+TEST_CASE("stage4: a one-sided light turned away from the floor lights none of it: every pixel is 0",
+          "[stage4][analytic]") {
+  check_light_turned_away(stage4::kernels(), test_seed(2360), false);
+  check_light_turned_away(stage4::kernels(), test_seed(2370), true);
+}
+
 TEST_CASE("stage4: a mirror reflects an emitter straight back as F0 x Le (emission after a delta bounce)",
           "[stage4][statistical][analytic]") {
   check_mirror(stage4::kernels(), test_seed(2400));

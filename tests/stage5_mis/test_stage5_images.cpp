@@ -164,6 +164,12 @@ TEST_CASE("stage5: a diffuse floor under a small, the default and a large square
   }
 }
 
+TEST_CASE("stage5: a one-sided light turned away from the floor lights none of it: every pixel is 0",
+          "[stage5][analytic]") {
+  check_light_turned_away(stage5::kernels(), test_seed(2860), false);
+  check_light_turned_away(stage5::kernels(), test_seed(2870), true);
+}
+
 TEST_CASE("stage5: a mirror reflects an emitter straight back as F0 x Le (emission after a delta bounce)",
           "[stage5][statistical][analytic]") {
   check_mirror(stage5::kernels(), test_seed(5500));

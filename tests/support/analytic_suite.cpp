@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/scene/analytic_scenes.h"
@@ -73,6 +74,26 @@ void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool tri
   analytic::FloorLightScene a;
   a.triangle = triangle;
   check_scene(kernels, analytic::make_floor_light(a), floor_light_image(a, size), settings(size, size, 1024, seed));
+}
+
+void check_light_turned_away(const StageKernels& kernels, std::uint32_t seed, bool triangle) {
+  const int size = 12;
+  analytic::FloorLightScene a;
+  a.triangle = triangle;
+  a.turned_away = true;
+  Film film(size, size);
+  for (const Film& b : render_batches(kernels, analytic::make_floor_light(a), settings(size, size, 64, seed), 2)) {
+    film.merge(b);
+  }
+  double brightest = 0.0;
+  for (int y = 0; y < size; y++) {
+    for (int x = 0; x < size; x++) {
+      glm::dvec3 m = film.mean(x, y);
+      brightest = std::max(brightest, std::max(m.x, std::max(m.y, m.z)));
+    }
+  }
+  INFO((triangle ? "triangle" : "square") << " light facing away from the floor");
+  CHECK(brightest == 0.0);
 }
 
 void check_mirror(const StageKernels& kernels, std::uint32_t seed) {

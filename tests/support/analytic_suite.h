@@ -28,6 +28,9 @@ void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed);
 ExpectedImage floor_light_image(const analytic::FloorLightScene& scene, int size);
 // A diffuse floor under a square light: Lambert's polygon formula, pixel by pixel.
 void check_floor_light(const StageKernels& kernels, std::uint32_t seed, bool triangle = false);
+// The floor under a one-sided square (or triangle) light turned away from it, facing up: a
+// light sample must not light a point behind the emitter, so every pixel is exactly 0.
+void check_light_turned_away(const StageKernels& kernels, std::uint32_t seed, bool triangle = false);
 // A mirror reflecting an emitter straight back: F0 x Le.
 void check_mirror(const StageKernels& kernels, std::uint32_t seed);
 // A glass slab before an emitter: Le (1 - R) / (1 + R); invisible at ior 1.
