@@ -8,8 +8,9 @@ log time (-1/2 for an unbiased estimator), rays per second, specialised kernels,
 rays per second against the triangle count with the BVH and Embree (issue 17), and
 issue 22's times to 10%, 3% and 1% read off the curves and the split's cost (report_error_targets.py).
 Hand-written findings come from docs/results/notes.md, accel_notes.md, split_notes.md,
-sampler_notes.md (bench/sampler_study.py), cycles_notes.md (bench/cycles/compare.py) and
-smallpt_notes.md (bench/smallpt_compare.py), kept
+sampler_notes.md (bench/sampler_study.py), cycles_notes.md (bench/cycles/compare.py),
+smallpt_notes.md (bench/smallpt_compare.py) and stage_chapters_notes.md (the index of the
+stage chapters' measurements, docs/results/stageN_notes.md), kept
 between runs. Every table comes from the CSV files in the folder, so a run of one section
 (pt_bench --section accel) keeps the others' tables as their last full run left them."""
 import argparse
@@ -252,7 +253,7 @@ def main():
 
     md += split_section(a.results)
     # Hand-written sections of later issues, each measured by its own script (named inside).
-    for name in ("sampler_notes.md", "cycles_notes.md", "smallpt_notes.md"):
+    for name in ("sampler_notes.md", "cycles_notes.md", "smallpt_notes.md", "stage_chapters_notes.md"):
         path = os.path.join(a.results, name)
         if os.path.exists(path):
             md += [open(path).read().rstrip(), ""]

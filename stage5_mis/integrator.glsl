@@ -55,7 +55,7 @@ vec3 Li(Ray ray) {
     // Russian roulette decides here, after the emission this ray found, not before the ray
     // was traced (stages 2-4): the two strategies' shares of one vertex's direct light then
     // survive or end together, as their MIS weights assume. It costs the one ray a path
-    // traces before it ends, and it pays (docs/stage5_mis.md has the numbers).
+    // traces before it ends, and it pays (docs/results/stage5_notes.md has the numbers).
     if (depth > 0u) {
       float survive = russian_roulette(beta, params.roulette);
       if (survive == 0.0f) break;

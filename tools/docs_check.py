@@ -61,10 +61,10 @@ def markdown_files(root):
     for base, dirs, names in os.walk(os.path.join(root, "docs")):
         dirs.sort()
         files += [os.path.join(base, n) for n in sorted(names) if n.endswith(".md")]
-    # docs/results/notes.md is a fragment that bench/report.py copies into docs/results.md:
-    # its links are relative to docs/, and they are checked there.
-    fragment = os.path.join(root, "docs", "results", "notes.md")
-    return [f for f in files if os.path.isfile(f) and os.path.normpath(f) != os.path.normpath(fragment)]
+    # docs/results/notes.md and stage_chapters_notes.md are fragments that bench/report.py
+    # copies into docs/results.md: their links are relative to docs/, and they are checked there.
+    fragments = {os.path.normpath(os.path.join(root, "docs", "results", n)) for n in ("notes.md", "stage_chapters_notes.md")}
+    return [f for f in files if os.path.isfile(f) and os.path.normpath(f) not in fragments]
 
 
 def check_excerpts(root, md, lines, update, problems):

@@ -23,7 +23,7 @@ using namespace pt::test;
 // light-sampling estimate cos_x cos_y / d^2 / pdf has infinite variance (its second moment
 // diverges like the integral of dt / t^2 over the distance t to an edge), so sample means
 // sit below the answer for a long time and variance-based tolerances do not hold
-// (docs/stage4_direct_indirect.md has the numbers). The spherical furnace has no edges.
+// (docs/results/stage4_notes.md has the numbers). The spherical furnace has no edges.
 TEST_CASE("stage4: furnace sphere whose inside emits: Le / (1 - albedo) at albedo 0.5 and 0.8",
           "[stage4][statistical][analytic]") {
   check_furnace_sphere(stage4::kernels(), 0.5f, test_seed(2100));

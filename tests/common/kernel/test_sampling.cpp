@@ -180,7 +180,8 @@ TEST_CASE("sampling: no lobe creates energy; a white GGX conductor loses energy 
       CHECK(albedo <= 1.0 + 1e-3);
       // Single scattering loses the energy of paths that hit the surface twice: nothing at
       // alpha -> 0, more as alpha grows. Beyond 80 degrees masking, not roughness, rules:
-      // there the albedo is not monotone in alpha (docs/stage3 lists the measured values).
+      // there the albedo is not monotone in alpha (docs/results/stage3_notes.md lists the
+      // measured values).
       if (degrees <= 80.0) CHECK(albedo <= previous + 5e-3);  // F G2 / G1 spreads < 0.01 here
       if (degrees <= 80.0 && alpha <= 1e-4) CHECK(albedo >= 0.999);
       previous = albedo;
