@@ -146,6 +146,7 @@ Mutated<float> mutant_triangle_light_pdf(uint index, vec3 wi, float dist) {
 }
 
 Mutated<bool> mutant_counts_emission(uint depth, bool after_delta) {
+  (void)after_delta;  // each mistake below ignores it
   // Every hit's emission, as stage3 counts it: what light sampling found is counted twice.
   if (is_mutant(4, "emission_always")) return mutated(true);
   // Only the camera ray's: a light seen in a mirror or through glass is lost.

@@ -51,7 +51,8 @@ struct Moments {
 
 // One diffuse bounce of stage2 at albedo rho, followed by the roulette, from weight 1:
 // the mean and second moment of the weight the path carries on. The kernel functions are
-// stage2's (compiled above); the factor is the corrected 2 pi.
+// stage2's (compiled above): its sampler, uniform_bounce_weight (the corrected 2 pi) and
+// russian_roulette, lab 2's functions.
 namespace kernel = printed;
 Moments bounce_moments(float rho, uint mode, std::uint32_t seed) {
   const int n = 2'000'000;
@@ -59,7 +60,7 @@ Moments bounce_moments(float rho, uint mode, std::uint32_t seed) {
   kernel::rng_seed(0u, 0u, seed);
   for (int i = 0; i < n; i++) {
     glm::vec3 wi = kernel::sample_uniform_hemisphere(kernel::rng_next_vec2());
-    glm::vec3 beta = 2.0f * kernel::kPi * kernel::lambert_brdf(glm::vec3(rho), glm::vec3(0, 0, 1), wi) * wi.z;
+    glm::vec3 beta = kernel::uniform_bounce_weight(kernel::lambert_brdf(glm::vec3(rho), glm::vec3(0, 0, 1), wi), wi);
     double w = double(beta.x * kernel::russian_roulette(beta, mode));
     sum += w, sum2 += w * w, sum4 += w * w * w * w;
   }
