@@ -1,0 +1,55 @@
+"""The reports of a grading run, for tools/grade_lab.py (grading a class's lab submissions;
+tooling for teachers, not a part of the article): OUT/logs/, emptied before the run, which
+then holds each student's build log, test log and Catch2 XML; OUT/grades.csv, one row per
+student; OUT/grades.xml, JUnit, one testcase per student (FAIL a failure, the other verdicts
+but PASS an error)."""
+import csv
+import os
+import time
+from xml.sax.saxutils import escape, quoteattr
+
+
+def fresh_logs(out):
+    """OUT/logs, made or emptied; returns its path."""
+    logs = os.path.join(out, "logs")
+    os.makedirs(logs, exist_ok=True)
+    for stale in os.listdir(logs):
+        os.remove(os.path.join(logs, stale))
+    return logs
+
+
+def write_csv(out, grades):
+    with open(os.path.join(out, "grades.csv"), "w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh)
+        w.writerow(["name", "verdict", "convention_only", "tests_passed", "tests_total", "failed_criteria", "detail",
+                    "build_seconds", "test_seconds", "submission"])
+        for g in grades:
+            w.writerow([g.name, g.verdict, "yes" if g.convention_only else "no", g.passed, g.total, "; ".join(g.failed),
+                        g.detail, f"{g.build_s:.1f}", f"{g.test_s:.1f}", g.submission or ""])
+
+
+def write_junit(out, lab, grades, elapsed):
+    failures = sum(1 for g in grades if g.verdict == "FAIL")
+    errors = sum(1 for g in grades if g.verdict not in ("PASS", "FAIL"))
+    xml = ['<?xml version="1.0" encoding="UTF-8"?>',
+           f'<testsuites name="lab{lab}" tests="{len(grades)}" failures="{failures}" errors="{errors}" time="{elapsed:.1f}">',
+           f'  <testsuite name="lab{lab}" tests="{len(grades)}" failures="{failures}" errors="{errors}" skipped="0" '
+           f'time="{elapsed:.1f}" timestamp="{time.strftime("%Y-%m-%dT%H:%M:%S")}">']
+    for g in grades:
+        xml.append(f'    <testcase classname="lab{lab}" name={quoteattr(g.name)} time="{g.build_s + g.test_s:.1f}">')
+        if g.verdict == "FAIL":
+            kind = "FAIL convention" if g.convention_only else "FAIL"
+            xml.append(f'      <failure type="{kind}" message={quoteattr(g.detail)}>{escape(chr(10).join(g.failed))}</failure>')
+        elif g.verdict != "PASS":
+            xml.append(f'      <error type="{g.verdict}" message={quoteattr(g.detail)}/>')
+        xml.append(f"      <system-out>{escape(g.line())}</system-out>")
+        xml.append("    </testcase>")
+    xml += ["  </testsuite>", "</testsuites>", ""]
+    with open(os.path.join(out, "grades.xml"), "w", encoding="utf-8") as fh:
+        fh.write("\n".join(xml))
+
+
+def write_reports(out, lab, grades, elapsed):
+    """OUT/grades.csv and OUT/grades.xml for the grades so far."""
+    write_csv(out, grades)
+    write_junit(out, lab, grades, elapsed)

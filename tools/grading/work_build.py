@@ -1,0 +1,229 @@
+"""The work copy of the repository and its lab build, for tools/grade_lab.py (grading a class's
+lab submissions; tooling for teachers, not a part of the article). WORK/src is a copy of the
+repository, rewritten only where a file differs, and WORK/build its build with -DPT_LAB=LAB,
+kept between runs. Before a submission is built, every output of that build that depends on
+labs/labLAB.glsl is deleted: objects, SPIR-V headers, the libraries and programs linked from
+them, pt_tests among them. The dependencies are the build's own (CMake's build.make rules and
+the compilers' depfiles), so a submission that does not compile leaves no test program at all,
+never the previous student's (issue 24). The first build, with the repository's own
+labs/labLAB.glsl, and its list of the lab's tests are kept in WORK/setup.json."""
+import fcntl
+import filecmp
+import json
+import os
+import re
+import shutil
+import sys
+
+from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die, run_group
+from .lab_tests import lab_specs, test_names
+
+
+def lock_work(work):
+    """The open lock file of WORK, locked: one grader at a time per work folder. Keep it open."""
+    lock = open(os.path.join(work, "lock"), "w")
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        die(f"another tools/grade_lab.py is using {work}: wait for it, or give this one another --work", 1)
+    return lock
+
+
+def sync_tree(src, dest, skip):
+    """Makes dest a copy of the repository src without .git, out/ and build folders (build*/ and
+    any folder that holds a CMakeCache.txt). Rewrites only the files whose content differs, so
+    that the build after it recompiles only what changed. Returns how many files it wrote or
+    removed."""
+    keep, changed = set(), 0
+    for root, dirs, files in os.walk(src):
+        rel = os.path.relpath(root, src)
+        dirs[:] = sorted(d for d in dirs if d not in (".git", "__pycache__")
+                         and not (rel == "." and (d.startswith("build") or d == "out"))
+                         and os.path.realpath(os.path.join(root, d)) not in skip
+                         and not os.path.isfile(os.path.join(root, d, "CMakeCache.txt")))
+        os.makedirs(os.path.join(dest, rel), exist_ok=True)
+        for f in files:
+            s, d = os.path.join(root, f), os.path.normpath(os.path.join(dest, rel, f))
+            keep.add(d)
+            if not os.path.isfile(d) or not filecmp.cmp(s, d, shallow=False):
+                shutil.copyfile(s, d)
+                shutil.copymode(s, d)
+                changed += 1
+    for root, dirs, files in os.walk(dest):
+        for f in files:
+            if os.path.normpath(os.path.join(root, f)) not in keep:
+                os.remove(os.path.join(root, f))
+                changed += 1
+    return changed
+
+
+def make_tokens(text):
+    """The words of a make rule or depfile: backslash-newlines joined, '\\ ' kept in a name."""
+    text = text.replace("\\\n", " ")
+    return [t.replace("\\ ", " ") for t in re.findall(r"(?:\\ |[^\s])+", text)]
+
+
+def build_node(path, cwd, build):
+    """A path of a rule or depfile as dependency_graph names it: relative to the build folder
+    when inside it, absolute otherwise."""
+    p = os.path.normpath(path if os.path.isabs(path) else os.path.join(cwd, path))
+    return os.path.relpath(p, build) if p.startswith(build + os.sep) else p
+
+
+def add_rule_edges(users, path, build):
+    """Adds the rules of CMake's Makefile path (a build.make) to users."""
+    lines = open(path, encoding="utf-8", errors="replace").read().replace("\\\n", " ").splitlines()
+    for line in lines:
+        if not line or line[0] in "\t#" or ":" not in line or line.startswith("."):
+            continue
+        m = re.match(r"^((?:\\ |[^\s:])+)\s*:(?!=)(.*)$", line)
+        if not m:
+            continue
+        target = build_node(make_tokens(m.group(1))[0], build, build)
+        for dep in make_tokens(m.group(2)):
+            users.setdefault(build_node(dep, build, build), set()).add(target)
+
+
+def add_depfile_edges(users, path, build):
+    """Adds a compiler's depfile path (an *.o.d) to users."""
+    tokens = make_tokens(open(path, encoding="utf-8", errors="replace").read())
+    if not tokens or not tokens[0].endswith(":"):
+        return
+    # gcc runs in the target's folder, the part of the path before CMakeFiles/.
+    cwd = path.split(os.sep + "CMakeFiles" + os.sep)[0]
+    target = os.path.relpath(path[:-2], build)
+    for dep in tokens[1:]:
+        if dep.endswith(":"):  # -MP phony rules
+            continue
+        users.setdefault(build_node(dep, cwd, build), set()).add(target)
+
+
+def dependency_graph(build):
+    """prerequisite -> the outputs made from it, from CMake's Makefile rules (build.make) and the
+    compilers' depfiles (*.o.d). Paths inside the build folder are relative to it, others absolute."""
+    users = {}
+    for root, _, files in os.walk(build):
+        for f in files:
+            path = os.path.join(root, f)
+            if f == "build.make":
+                add_rule_edges(users, path, build)
+            elif f.endswith(".o.d"):
+                add_depfile_edges(users, path, build)
+    return users
+
+
+def delete_dependents(build, lab_file):
+    """Deletes every output of the build that depends on lab_file; returns how many existed."""
+    users = dependency_graph(build)
+    seen, todo = set(), [os.path.normpath(lab_file)]
+    while todo:
+        for out in users.get(todo.pop(), ()):
+            if out not in seen:
+                seen.add(out)
+                todo.append(out)
+    deleted = 0
+    for out in seen:
+        path = os.path.join(build, out)
+        if not os.path.isabs(out) and os.path.isfile(path):  # only what the build made
+            os.remove(path)
+            deleted += 1
+    return deleted
+
+
+def put_lab_file(build, lab_file, code):
+    """Writes code as the work copy's labs/labLAB.glsl (a new file, written now) and deletes
+    every output of the build that depends on it."""
+    with open(lab_file, "wb") as fh:
+        fh.write(code)
+    delete_dependents(build, lab_file)
+
+
+ERROR_LINE = re.compile(r"(:\d+(:\d+)?: (fatal )?error:)|(^ERROR: )|(undefined reference to)|(: error:)")
+
+
+def first_error(log_path, src):
+    """The first compiler, glslang or linker error line of a build log, with the work copy's
+    paths shortened to the repository's (labs/lab2.glsl:14:3: error: ...)."""
+    lines = open(log_path, encoding="utf-8", errors="replace").read().splitlines()
+    at = next((i for i, l in enumerate(lines) if ERROR_LINE.search(l)), None)
+    pick = None if at is None else lines[at]
+    if pick is not None and pick.rstrip().endswith(":") and at + 1 < len(lines):
+        pick += " " + lines[at + 1].strip()  # glslang names the function on the next line
+    if pick is None:
+        pick = next((l for l in lines if re.search(r"error", l, re.I) and "***" not in l), None)
+    if pick is None:
+        pick = lines[-1] if lines else "the build failed without a message"
+    pick = " ".join(pick.replace(src + os.sep, "").split())
+    # glslang's "ERROR: FILE:LINE: 'x' : message" in the compilers' form "FILE:LINE: error: 'x' : message"
+    return re.sub(r"^ERROR: (\S+?:\d+): ", r"\1: error: ", pick)
+
+
+def cmake_build(cmake, build, jobs, log_path):
+    return run_group([cmake, "--build", build, "--target", TEST_TARGET, "-j", str(jobs)], log_path, BUILD_TIMEOUT)
+
+
+def build_is_new(build, a):
+    """True when WORK/build is not configured yet; exits when it is the build of another lab."""
+    cache = os.path.join(build, "CMakeCache.txt")
+    if not os.path.isfile(cache):
+        return True
+    configured = re.search(r"^PT_LAB:STRING=(\S*)", open(cache, encoding="utf-8", errors="replace").read(), re.M)
+    if not configured or configured.group(1) != str(a.lab):
+        die(f"{a.work} holds the build of another lab ({configured.group(1) if configured else '?'}): "
+            f"give lab {a.lab} a --work of its own ({USAGE})", 2)
+    return False
+
+
+def kept_setup(stamp, lab, fresh, changed):
+    """The setup of the last run (WORK/setup.json) when neither the build nor the repository
+    changed since, else None (and the stale file removed)."""
+    setup = None
+    if not fresh and not changed and os.path.isfile(stamp):
+        setup = json.load(open(stamp, encoding="utf-8"))
+        setup = setup if setup.get("lab") == lab else None
+    if setup is None and os.path.exists(stamp):
+        os.remove(stamp)
+    return setup
+
+
+def first_build(a, cmake, ctest, fresh, lab_file, setup_log, stamp):
+    """Configures the lab build when fresh, builds it with the repository's own labs/labLAB.glsl
+    (the handout's stub; a failure there is not a student's) and lists the lab's tests. Returns
+    the setup {lab, specs, tests}, written to stamp."""
+    src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
+    if fresh:
+        rc, _ = run_group([cmake, "-S", src, "-B", build, "-G", "Unix Makefiles", "-DCMAKE_BUILD_TYPE=Release",
+                           f"-DPT_LAB={a.lab}", "-DPT_CPU_GENERAL_ONLY=ON"], setup_log, BUILD_TIMEOUT)
+        if rc != 0:
+            die(f"the lab build does not configure: see {setup_log}", 1)
+    delete_dependents(build, lab_file)
+    rc, timed_out = cmake_build(cmake, build, a.jobs, setup_log)
+    if rc != 0 or timed_out:
+        die(f"the lab build fails with the repository's own labs/lab{a.lab}.glsl, before any submission: "
+            f"{first_error(setup_log, src)} (see {setup_log})", 1)
+    specs = lab_specs(ctest, build, a.lab)
+    setup = {"lab": a.lab, "specs": specs, "tests": test_names(build, specs)}
+    if not setup["tests"]:
+        die(f"lab {a.lab}'s specs {specs} select no test of {TEST_TARGET}", 1)
+    with open(stamp, "w", encoding="utf-8") as fh:
+        json.dump(setup, fh, indent=1)
+    return setup
+
+
+def set_up(repo, a, out, logs, cmake, ctest, count):
+    """Brings the work copy up to date with repo and, the first time and whenever the repository
+    changed since, builds the lab once (first_build). Returns (the work copy's labs/labLAB.glsl,
+    its content, the setup {lab, specs, tests})."""
+    src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
+    changed = sync_tree(repo, src, {a.work, out})
+    lab_file = os.path.join(src, "labs", f"lab{a.lab}.glsl")
+    original = open(lab_file, "rb").read()
+    fresh = build_is_new(build, a)
+    stamp = os.path.join(a.work, "setup.json")
+    setup = kept_setup(stamp, a.lab, fresh, changed)
+    print(f"grade_lab: lab {a.lab}, {count} submission(s); the lab build is {build}"
+          + (" (new: the first build takes ~7 min on 2 cores)" if fresh else "")
+          + (", unchanged since the last run" if setup else ""), file=sys.stderr)
+    if setup is None:
+        setup = first_build(a, cmake, ctest, fresh, lab_file, os.path.join(logs, "_setup.log"), stamp)
+    return lab_file, original, setup
