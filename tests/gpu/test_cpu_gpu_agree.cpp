@@ -73,7 +73,7 @@ TEST_CASE("stage5: CPU and GPU images of the same seed agree to rounding under p
 // The GPU reads the triangles from a uniform copy when they fit (gpu_backend.cpp, 1364 on
 // lavapipe) and from the storage buffer otherwise: the second path too must give the CPU's
 // image. The Cornell box with 2000 more triangles out of sight, far below its floor.
-TEST_CASE("stage1, stage2: CPU and GPU agree when the triangles do not fit the uniform copy", "[stage2][gpu]") {
+TEST_CASE("stage1, stage2: CPU and GPU agree when the triangles do not fit the uniform copy", "[stage1][stage2][gpu]") {
   Scene scene = make_builtin_scene("cornell");
   const uint hidden = scene.add_material(make_diffuse(glm::vec3(0.5f)));
   for (int i = 0; i < 2000; i++) {
@@ -96,7 +96,8 @@ TEST_CASE("stage1, stage2: CPU and GPU agree when the triangles do not fit the u
 // image with the BVH must be its image without it (the CPU and GPU differ there by more than
 // the tolerance with or without the BVH: GGX and glass paths, which the driver compiles with
 // fused multiply-adds), and the GPU's brute-force loop (--accel none) against the CPU's BVH.
-TEST_CASE("every stage: the GPU's image with the BVH is its image without, and agrees with the CPU's", "[bvh][gpu]") {
+TEST_CASE("every stage: the GPU's image with the BVH is its image without, and agrees with the CPU's",
+          "[stage1][stage2][stage3][stage4][bvh][gpu]") {
   for (const StageKernels& kernels : {stage1::kernels(), stage2::kernels(), stage3::kernels(), stage4::kernels()}) {
     Scene scene = make_builtin_scene("every_feature");
     RenderSettings s = settings(40, 30, 4, 26);
@@ -125,7 +126,8 @@ TEST_CASE("every stage: the GPU's image with the BVH is its image without, and a
 // The BVH on both backends over a scene of more than 100k triangles: the Cornell box with a
 // diffuse icosphere of 20 x 72^2 = 103,680 triangles in it. Each stage's CPU and GPU images
 // of one seed agree to rounding: the traversal is one source (common/kernel/bvh.glsl).
-TEST_CASE("stages 1-4: CPU and GPU agree to rounding through the BVH of a 100k-triangle scene", "[gpu][bvh][large]") {
+TEST_CASE("stages 1-4: CPU and GPU agree to rounding through the BVH of a 100k-triangle scene",
+          "[stage1][stage2][stage3][stage4][gpu][bvh][large]") {
   Scene scene = make_builtin_scene("cornell");
   add_icosphere(scene, glm::vec3(0.25f, 0.35f, 0.45f), 0.3f, 72, scene.add_material(make_diffuse(glm::vec3(0.7f))));
   build_light_table(scene);

@@ -32,7 +32,7 @@ double mean_sample_variance(const Film& film) {
 }  // namespace
 
 TEST_CASE("stability: furnace boxes of albedo 0.99 and 0.999 reach Le / (1 - albedo) on stages 3 and 4, or "
-          "the backend says it could not", "[stability][statistical][analytic]") {
+          "the backend says it could not", "[stage3][stage4][stability][statistical][analytic]") {
   // With throughput roulette a path continues with probability albedo: at 0.999 the mean
   // path has 1000 bounces, 37% of paths pass the default depth cap of 1000 (which would
   // give 1 - 0.999^1000 = 632 instead of 1000), so the cap is raised to where what it cuts,
@@ -65,7 +65,7 @@ TEST_CASE("stability: furnace boxes of albedo 0.99 and 0.999 reach Le / (1 - alb
 }
 
 TEST_CASE("stability: the article's fixed roulette at albedo 0.999: the second moment doubles with every "
-          "bounce the depth cap allows (infinite variance)", "[stability][statistical]") {
+          "bounce the depth cap allows (infinite variance)", "[stage3][stability][statistical]") {
   // In the furnace box with cosine sampling every bounce weighs rho exactly and the fixed
   // roulette continues with p = 1/2, dividing by it: with depth cap D a sample is
   // S_k = sum_{j<=k} (2 rho)^j with k = min(K, D - 1), K ~ Geometric(1/2). Its second
@@ -104,7 +104,7 @@ TEST_CASE("stability: the article's fixed roulette at albedo 0.999: the second m
 }
 
 TEST_CASE("stability: radiance from 1e-20 to 1e20 neither overflows nor flushes to zero in the film",
-          "[stability]") {
+          "[stage3][stage4][stability]") {
   // The same seed renders the same paths, so the furnace at emission E is E times the one
   // at emission 1: mean and estimated variance must scale by E and E^2 (float rounding
   // only), not turn infinite (squares of 1e20 overflow a float) or zero (squares of 1e-20
@@ -163,7 +163,7 @@ ExpectedImage point_limit_image(const analytic::FloorLightScene& a, int size) {
 }  // namespace
 
 TEST_CASE("stability: a square light shrunk from side 1 to 1e-6 at constant power converges to the "
-          "point-light image on stage4", "[stability][statistical][analytic]") {
+          "point-light image on stage4", "[stage4][stability][statistical][analytic]") {
   const int size = 10;
   for (double side : {1.0, 1e-2, 1e-4, 1e-6}) {
     analytic::FloorLightScene a = small_light(side);
@@ -178,7 +178,7 @@ TEST_CASE("stability: a square light shrunk from side 1 to 1e-6 at constant powe
 }
 
 TEST_CASE("stability: as the square light shrinks, stages 2-3 find it by chance and their variance grows "
-          "as 1 / side^2; stage4's does not", "[stability][statistical]") {
+          "as 1 / side^2; stage4's does not", "[stage2][stage3][stage4][stability][statistical]") {
   // The floor's radiance stays ~ the same; a BRDF-sampled ray hits a light of solid angle
   // ~ side^2 with probability ~ side^2 and then carries ~ 1 / side^2: the per-sample
   // variance grows as 1 / side^2. Light sampling (stage4) always reaches the light.

@@ -32,7 +32,7 @@ CameraDesc orthographic_camera(glm::vec3 eye, glm::vec3 dir, glm::vec3 up, float
 }  // namespace
 
 TEST_CASE("stability: glass of ior 1 is invisible, of ior 1.0001 and 3 transmits (1 - R) / (1 + R)",
-          "[stability][statistical][analytic]") {
+          "[stage3][stage4][stability][statistical][analytic]") {
   for (const StageKernels& kernels : {stage3::kernels(), stage4::kernels()}) {
     for (float ior : {1.0f, 1.0001f, 3.0f}) {
       INFO(kernels.name);
@@ -42,7 +42,7 @@ TEST_CASE("stability: glass of ior 1 is invisible, of ior 1.0001 and 3 transmits
 }
 
 TEST_CASE("stability: a closed glass sphere inside a white furnace neither creates nor loses energy",
-          "[stability][statistical][analytic]") {
+          "[stage3][stage4][stability][statistical][analytic]") {
   // The furnace's radiance is the same in every direction, so a lossless refracting sphere
   // (radiance scaled by eta^2 entering and 1 / eta^2 leaving, total internal reflection
   // inside) leaves every pixel at Le / (1 - albedo) = 2.
@@ -60,7 +60,7 @@ TEST_CASE("stability: a closed glass sphere inside a white furnace neither creat
 }
 
 TEST_CASE("stability: camera rays at 89.99 degrees to a diffuse plane under a uniform sky see albedo x sky",
-          "[stability][statistical][analytic]") {
+          "[stage3][stage4][stability][statistical][analytic]") {
   // The rays meet the plane 0.01 degrees above it, 4 to 16 units away: a spawned ray that
   // hit the plane again (acne) would darken the pixel.
   const float albedo = 0.5f, sky = 1.0f;
@@ -108,7 +108,7 @@ double ggx_albedo_at_normal(double alpha) {
 }  // namespace
 
 TEST_CASE("stability: GGX roughness from 0 to 1: finite images of the closed-form albedo, continuous where "
-          "it becomes a perfect mirror", "[stability][statistical][analytic]") {
+          "it becomes a perfect mirror", "[stage3][stability][statistical][analytic]") {
   // A white GGX conductor (F0 = 1) seen from straight above under a uniform sky of 1 shows
   // its directional albedo: 1 for a mirror, less as alpha grows (single scattering loses
   // what the microfacets shadow). Below kGgxMirrorAlpha the conductor is a perfect mirror;

@@ -151,7 +151,7 @@ Difference compare(const Film& f, const std::vector<double>& d) {
 }  // namespace
 
 TEST_CASE("stability: float kernels and the same source built with double agree on the analytic scenes",
-          "[stability]") {
+          "[stage3][stage4][stability]") {
   struct Case {
     const char* name;
     Scene scene;

@@ -33,7 +33,7 @@ void transform_scene(Scene& scene, float s, glm::vec3 offset) {
 }  // namespace
 
 TEST_CASE("stability: the floor under a square light renders its closed form at scales 1e-4 to 1e6 and moved 1e5",
-          "[stability][statistical]") {
+          "[stage3][stage4][stability][statistical]") {
   const int size = 12;
   analytic::FloorLightScene a;
   ExpectedImage expected = floor_light_image(a, size);
@@ -61,7 +61,7 @@ TEST_CASE("stability: the floor under a square light renders its closed form at 
 }
 
 TEST_CASE("stability: a furnace of 1.3 million triangles gives Le / (1 - albedo) through the BVH on stages 2-4",
-          "[stability][statistical][bvh][large]") {
+          "[stage2][stage3][stage4][stability][statistical][bvh][large]") {
   // The closed form holds for any closed surface, whatever its tessellation: here the
   // inside of an icosphere of 20 x 256^2 triangles (builtin:furnace_mesh), searched through
   // one BVH that all three stages share. Leaks between the mesh's triangles, a box test

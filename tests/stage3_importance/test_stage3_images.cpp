@@ -63,7 +63,7 @@ TEST_CASE("stage3: a glass slab of ior 1 is invisible; of ior 1.5 it transmits (
   check_glass_slab(stage3::kernels(), 1.5f, test_seed(1500));
 }
 
-TEST_CASE("stage3 and stage2 render a glossy scene to the same mean (t-test)", "[stage3][statistical]") {
+TEST_CASE("stage3 and stage2 render a glossy scene to the same mean (t-test)", "[stage2][stage3][statistical]") {
   // The floor under the square light, made a rough gold conductor. The means agree under
   // both samplers; with independent samples stage3 is less noisy (the point of Eq. 4: a
   // sample's variance). Under the default Owen-scrambled Sobol sampler stage2 was the less

@@ -70,7 +70,8 @@ TEST_CASE("stage4: a glass slab of ior 1 is invisible; of ior 1.5 it transmits (
   check_glass_slab(stage4::kernels(), 1.5f, test_seed(2500));
 }
 
-TEST_CASE("stage4: a point light above a diffuse floor gives albedo I cos / (pi d^2)", "[stage4][statistical][analytic]") {
+TEST_CASE("stage4: a point light above a diffuse floor gives albedo I cos / (pi d^2)",
+          "[stage4][statistical][analytic]") {
   check_point_floor(stage4::kernels(), 20, test_seed(2600));
 }
 
@@ -90,6 +91,6 @@ TEST_CASE("stage4: inside a diffuse sphere lit by a point light of intensity pi 
 }
 
 TEST_CASE("stage4 and stage3 agree on the Cornell box, over the image and region by region (t-tests)",
-          "[stage4][statistical]") {
+          "[stage3][stage4][statistical]") {
   check_agree_on_cornell(stage3::kernels(), stage4::kernels(), test_seed(2800));
 }

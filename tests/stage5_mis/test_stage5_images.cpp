@@ -198,7 +198,7 @@ TEST_CASE("stage5: inside a diffuse sphere lit by a point light of intensity pi 
 }
 
 TEST_CASE("stage5 and stage3 agree on the Cornell box, over the image and region by region (t-tests)",
-          "[stage5][statistical]") {
+          "[stage3][stage5][statistical]") {
   check_agree_on_cornell(stage3::kernels(), stage5::kernels(), test_seed(5900));
 }
 

@@ -13,7 +13,8 @@
 using namespace pt;
 using namespace pt::test;
 
-TEST_CASE("bvh: every stage's CPU image with --accel bvh is --accel none's, bit for bit", "[bvh]") {
+TEST_CASE("bvh: every stage's CPU image with --accel bvh is --accel none's, bit for bit",
+          "[stage1][stage2][stage3][stage4][bvh]") {
   for (const StageKernels& kernels : {stage1::kernels(), stage2::kernels(), stage3::kernels(), stage4::kernels()}) {
     for (const char* name : {"cornell", "every_feature"}) {
       Scene scene = make_builtin_scene(name);

@@ -52,7 +52,7 @@ std::string write(const std::string& name, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("cli: a good render writes the image and prints one summary line", "[cli]") {
+TEST_CASE("cli: a good render writes the image and prints one summary line", "[stage1][cli]") {
   std::string out = (scratch() / "ok.exr").string();
   Run r = run("--backend cpu --width 32 --height 24 --spp 2 --out " + out);
   INFO(r.err);
@@ -202,7 +202,7 @@ TEST_CASE("cli: a failed run leaves an existing output file untouched", "[cli]")
   CHECK(files == 0);
 }
 
-TEST_CASE("cli: without a Vulkan driver, gpu exits 4 and auto falls back to the CPU", "[cli]") {
+TEST_CASE("cli: without a Vulkan driver, gpu exits 4 and auto falls back to the CPU", "[stage1][cli]") {
   const std::string no_driver = "VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json";
   check_error(run("--backend gpu --width 8 --height 8 --out " + (scratch() / "gpu.png").string(), no_driver), 4,
               "--backend cpu");

@@ -33,7 +33,7 @@ Run merge(const std::string& args) { return run_program(PT_MERGE_BIN, args, "", 
 
 }  // namespace
 
-TEST_CASE("cli: --samples FIRST:COUNT takes a range, and a bad one is one line and exit 2", "[cli][parts]") {
+TEST_CASE("cli: --samples FIRST:COUNT takes a range, and a bad one is one line and exit 2", "[stage1][cli][parts]") {
   for (const char* bad : {"8", "a:4", "4:", ":4", "4:0", "-1:4", "4294967295:2", "1:2:3"}) {
     INFO("--samples " << bad);
     check_error(stage1(std::string("--samples ") + bad + " --out " + path("bad.png")), "stage1_raycast", 2, "--samples");
@@ -74,7 +74,8 @@ TEST_CASE("cli: pt_merge of parts split at pass ends is the one-run image bit fo
   CHECK(pt::format_ranges(pt::read_film_part(path("gap.exr")).ranges) == "0:48,64:16");
 }
 
-TEST_CASE("cli: a part cut by Ctrl-C holds the samples it did and merges with the rest", "[cli][parts][interrupt]") {
+TEST_CASE("cli: a part cut by Ctrl-C holds the samples it did and merges with the rest",
+          "[stage1][cli][parts][interrupt]") {
   const std::string cut = path("cut.exr"), err = path("cut.stderr"), log = path("cut.stdout");
   fs::remove(cut);
   pid_t pid = ::fork();

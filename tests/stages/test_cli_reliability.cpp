@@ -284,7 +284,7 @@ TEST_CASE("cli: a checkpoint that cannot be written is said once and the render 
 }
 
 TEST_CASE("cli: a program copied away from OpenImageIO's module refuses a .png in one line and writes .exr",
-          "[reliability][image]") {
+          "[stage1][reliability][image]") {
   const fs::path alone = scratch() / "alone";
   fs::create_directories(alone);
   fs::copy_file(PT_STAGE1_BIN, alone / "stage1_raycast", fs::copy_options::overwrite_existing);

@@ -54,7 +54,7 @@ Scene load_case(const Case& c) {
 
 }  // namespace
 
-TEST_CASE("specialised and general kernels give identical images", "[features]") {
+TEST_CASE("specialised and general kernels give identical images", "[stage1][stage2][stage3][stage4][features]") {
   uint all_features_seen = 0u;
   for (const Case& c : kCases) {
     Scene scene = load_case(c);

@@ -128,7 +128,7 @@ void color_plane(Scene& scene) {
 }  // namespace
 
 TEST_CASE("textures: white textures and white vertex colours render the untextured image, in every stage",
-          "[texture][features]") {
+          "[stage1][stage2][stage3][stage4][stage5][texture][features]") {
   const Scene plain = cornell_metals(false), textured = cornell_metals(true);
   REQUIRE((scene_feature_mask(textured, glm::vec3(0.0f)) & kFeatureTextures) != 0u);
   for (const StageKernels& kernels :
@@ -145,7 +145,7 @@ TEST_CASE("textures: white textures and white vertex colours render the untextur
   }
 }
 
-TEST_CASE("textures: a constant texture equals its factor times its decoded texel", "[texture]") {
+TEST_CASE("textures: a constant texture equals its factor times its decoded texel", "[stage1][stage3][texture]") {
   // sRGB (128, 64, 200) everywhere against the untextured base colour factor x its decoding.
   Scene plain = sky_plane(), textured = sky_plane();
   const uint texel = rgba(128, 64, 200, 255);
@@ -167,7 +167,7 @@ TEST_CASE("textures: a constant texture equals its factor times its decoded texe
   }
 }
 
-TEST_CASE("textures: stage1 shows a textured plane's base colour, texel by texel", "[texture]") {
+TEST_CASE("textures: stage1 shows a textured plane's base colour, texel by texel", "[stage1][texture]") {
   Scene scene = sky_plane();
   ExpectedImage want = sky_plane_image(scene, glm::dvec3(1.0), false);
   color_plane(scene);
@@ -218,7 +218,7 @@ TEST_CASE("textures: a textured plane under a uniform sky is factor x texture x 
   }
 }
 
-TEST_CASE("textures: COLOR_0 multiplies the base colour", "[texture][statistical]") {
+TEST_CASE("textures: COLOR_0 multiplies the base colour", "[stage2][stage4][texture][statistical]") {
   Scene scene = sky_plane();
   color_plane(scene);
   ExpectedImage want = sky_plane_image(scene, kSky, true);
@@ -303,7 +303,7 @@ TEST_CASE("alpha masks: an emitter's holes emit nothing, for light samples and B
 }
 
 TEST_CASE("alpha masks: a masked plane's holes show the sky behind, a fully masked occluder is not there, in every stage",
-          "[texture][alpha_mask][statistical]") {
+          "[stage1][stage2][texture][alpha_mask][statistical]") {
   // tests/data/gltf/tex_mask.gltf: the sky plane whose texels' alpha is a checkerboard of 0
   // and 1 (cutoff 0.5), behind a quad at z = 0.5 whose alpha 0.2 is below its cutoff 0.25
   // everywhere. Camera rays pass the occluder and the plane's holes; the plane's bounce and

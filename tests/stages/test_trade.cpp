@@ -181,7 +181,7 @@ TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one 
 }
 
 TEST_CASE("trade: --target-error 0.05 ends with a measured per-pixel error of at most about 0.06",
-          "[trade][statistical]") {
+          "[stage4][trade][statistical]") {
   const int size = 16, runs = 10;
   analytic::FloorLightScene a;
   Scene scene = analytic::make_floor_light(a);
@@ -204,7 +204,7 @@ TEST_CASE("trade: --target-error 0.05 ends with a measured per-pixel error of at
 }
 
 TEST_CASE("trade: the estimated error is honest and --target-error 0.01 ends below about 0.015 measured",
-          "[trade][statistical]") {
+          "[stage3][trade][statistical]") {
   analytic::FurnaceScene furnace;
   furnace.albedo = 0.8f;  // answer 5
   Scene scene = analytic::make_furnace(furnace);
@@ -231,7 +231,8 @@ TEST_CASE("trade: the estimated error is honest and --target-error 0.01 ends bel
   CHECK(honest >= 16);
 }
 
-TEST_CASE("trade: --time-budget stops after the pass that spends it, with a correct image of its spp", "[trade]") {
+TEST_CASE("trade: --time-budget stops after the pass that spends it, with a correct image of its spp",
+          "[stage3][trade]") {
   Scene scene = analytic::make_furnace({});
   RenderSettings s = settings(32, 32, 0xffffffffu, 1);
   s.roulette = kRouletteThroughput;

@@ -57,7 +57,7 @@ int load_code(const fs::path& p, std::uint64_t key, const char* stage, int w, in
 }  // namespace
 
 TEST_CASE("checkpoint: a render resumed from any pass equals the uninterrupted one bit for bit (CPU)",
-          "[reliability][checkpoint]") {
+          "[stage4][reliability][checkpoint]") {
   Scene scene = make_builtin_scene("cornell");
   RenderSettings s = test::settings(20, 20, 40, test::test_seed(11));
   s.sky = glm::vec3(0.1f);
@@ -90,7 +90,8 @@ TEST_CASE("checkpoint: a render resumed from any pass equals the uninterrupted o
   }
 }
 
-TEST_CASE("checkpoint: the render key changes with everything that determines the image", "[reliability][checkpoint]") {
+TEST_CASE("checkpoint: the render key changes with everything that determines the image",
+          "[stage3][stage4][reliability][checkpoint]") {
   Scene scene = make_builtin_scene("cornell");
   RenderSettings s = test::settings(16, 12, 8, 3);
   const std::uint64_t key = render_key("stage4_direct_indirect", scene, s);
@@ -132,7 +133,7 @@ TEST_CASE("checkpoint: the render key changes with everything that determines th
 }
 
 TEST_CASE("checkpoint: one of another render, a damaged or a truncated file is refused with exit 2",
-          "[reliability][checkpoint]") {
+          "[stage1][stage2][reliability][checkpoint]") {
   Scene scene = make_builtin_scene("cornell");
   RenderSettings s = test::settings(8, 6, 7, 5);
   std::vector<RenderResult> states;

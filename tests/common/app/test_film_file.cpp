@@ -102,7 +102,7 @@ std::string merge_error(std::vector<FilmPart> parts) {
 }  // namespace
 
 TEST_CASE("film parts: any split of the samples merges into the one-run image, bit for bit at pass ends",
-          "[film][parts]") {
+          "[stage4][film][parts]") {
   const Scene scene = make_builtin_scene("cornell");
   RenderSettings s = settings(20, 16, 80, 11);
   s.roulette = kRouletteThroughput;
@@ -143,7 +143,7 @@ TEST_CASE("film parts: any split of the samples merges into the one-run image, b
   }
 }
 
-TEST_CASE("film parts: a merge is a part: merged again it gives the same image", "[film][parts]") {
+TEST_CASE("film parts: a merge is a part: merged again it gives the same image", "[stage3][film][parts]") {
   const Scene scene = make_builtin_scene("furnace");
   RenderSettings s = settings(8, 8, 64, 12);
   s.roulette = kRouletteThroughput;
@@ -165,7 +165,7 @@ TEST_CASE("film parts: a merge is a part: merged again it gives the same image",
 
 TEST_CASE("film parts: parts of another render or samples held twice are refused, naming the file and the field; "
           "a gap is said",
-          "[film][parts]") {
+          "[stage3][stage4][film][parts]") {
   const Scene scene = make_builtin_scene("furnace");
   RenderSettings s = settings(8, 8, 16, 13);
   s.roulette = kRouletteThroughput;
@@ -199,7 +199,7 @@ TEST_CASE("film parts: parts of another render or samples held twice are refused
 }
 
 TEST_CASE("film parts: an .exr without the film's channels, or not an image, is refused in one line",
-          "[film][parts]") {
+          "[stage1][film][parts]") {
   const std::string rgb_only = scratch("rgb_only.exr").string();
   ImageMetadata meta;
   meta.stage = "stage1_raycast";

@@ -235,7 +235,8 @@ TEST_CASE("sampler: a block's odd slot and its four numbers together are nets as
   }
 }
 
-TEST_CASE("sampler: across pixels a sample's numbers are uniform and its dimensions independent", "[sampler][statistical]") {
+TEST_CASE("sampler: across pixels a sample's numbers are uniform and its dimensions independent",
+          "[sampler][statistical]") {
   // For one sample index, the pixels' numbers in dimensions 0-5 (1-D and 2-D requests mixed
   // as a path makes them) binned 8 x 8 per pair of consecutive requests: chi-square against
   // the uniform, Šidák-corrected over the pairs and sample indices at alpha 1e-3.

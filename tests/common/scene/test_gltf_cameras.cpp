@@ -116,7 +116,7 @@ TEST_CASE("cameras: the file's cameras in the order met, the first by default, -
 }
 
 TEST_CASE("cameras: aspectRatio sets the height when only --width is given, and a conflict is said once",
-          "[gltf][camera][cli]") {
+          "[stage1][gltf][camera][cli]") {
   std::string file = two_camera_file(2.0);
   std::string out = scratch() + "/wide.exr";
   pt_test::Run r = stage(PT_STAGE1_BIN, "--scene " + file + " --width 64 --out " + out);
@@ -143,7 +143,7 @@ TEST_CASE("cameras: aspectRatio sets the height when only --width is given, and 
 }
 
 TEST_CASE("cameras: a file with no camera is framed and said so; with no light the image is said to be black",
-          "[gltf][camera][cli]") {
+          "[stage1][stage2][gltf][camera][cli]") {
   GltfWriter g;
   g.node({{"mesh", g.quad({-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}, g.diffuse(glm::vec3(0.5f)))}});
   std::string file = g.write(scratch() + "/floor.gltf");

@@ -178,7 +178,7 @@ TEST_CASE("textures: an image outside the scene's folder is refused with exit 3"
 }
 
 TEST_CASE("textures: a used image that is missing, damaged, not PNG or JPEG, or too large is exit 3 naming it",
-          "[texture][loader]") {
+          "[stage1][texture][loader]") {
   require_bad_scene(fixture("tex_missing.gltf"), {"images[0]", "tex_missing.png", "not found"});
   require_bad_scene(fixture("tex_malformed.gltf"), {"images[0]", "baseColorTexture", "truncated PNG"});
   require_bad_scene(fixture("tex_not_png.gltf"), {"images[0]", "neither a PNG nor a JPEG"});
