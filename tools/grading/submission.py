@@ -83,17 +83,38 @@ def build_submission(g, ctx):
     return True
 
 
+def test_env():
+    """The environment of the tests: without the check build's switches or a seed offset."""
+    return {k: v for k, v in os.environ.items() if k not in ("PT_LAB_STUB", "PT_LAB_MUTANT", "PT_TEST_SEED_OFFSET")}
+
+
 def run_tests(g, ctx):
     """Runs the lab's tests on g's build, killed after --timeout seconds, with their Catch2 XML
     in logs/NAME.tests.xml. Returns (the return code, timed out)."""
     xml_path = os.path.join(ctx["logs"], f"{g.name}.tests.xml")
     test_log = os.path.join(ctx["logs"], f"{g.name}.tests.log")
-    env = {k: v for k, v in os.environ.items() if k not in ("PT_LAB_STUB", "PT_TEST_SEED_OFFSET")}
     t0 = time.monotonic()
     rc, timed_out = run_group([ctx["test_bin"], "-#", "-r", "xml", "-o", xml_path] + ctx["specs"], test_log,
-                              ctx["args"].timeout, env=env)
+                              ctx["args"].timeout, env=test_env())
     g.test_s = time.monotonic() - t0
     return rc, timed_out
+
+
+def crashed_in(g, ctx):
+    """The test in which g's tests die of a signal, from a second run with Catch2's console
+    reporter (logs/NAME.crash.log), which names the test whose run a fatal signal ends; None
+    if that run does not crash the same way."""
+    log = os.path.join(ctx["logs"], f"{g.name}.crash.log")
+    run_group([ctx["test_bin"], "-#"] + ctx["specs"], log, ctx["args"].timeout, env=test_env())
+    with open(log, encoding="utf-8", errors="replace") as fh:
+        lines = fh.read().splitlines()
+    name = None
+    for i, line in enumerate(lines):
+        if line.startswith("-----") and i + 2 < len(lines) and lines[i + 2].startswith("-----"):
+            name = lines[i + 1]  # Catch2's header of the test it reports on
+        elif "due to a fatal error condition" in line:
+            return name
+    return None
 
 
 def judge(g, ctx, rc, timed_out):
@@ -106,8 +127,10 @@ def judge(g, ctx, rc, timed_out):
         g.verdict, g.detail = "TIMEOUT", f"after {ctx['args'].timeout:g} s{where}"
         return
     if rc < 0:
-        # Catch2 reports the signal in the test case it stopped, then dies of it.
+        # Catch2 reports the signal in the test case it stopped, then dies of it; its XML file
+        # may not have been written out that far, and then a second run on the console says.
         fatal = next((n for n, ok, r in cases if r.startswith("FatalErrorCondition")), running)
+        fatal = fatal or crashed_in(g, ctx)
         g.verdict, g.detail = "CRASH", signal_name(rc) + (f" in \"{fatal}\"" if fatal else "")
         return
     failed = [(n, r) for n, ok, r in cases if not ok]
