@@ -186,8 +186,8 @@ Mutated<float> mutant_power_heuristic(float mine, float other) {
 }
 
 Mutated<float> mutant_triangle_light_pdf_by_solid_angle(uint index, vec3 p, vec3 wi, float dist) {
-  Triangle tri = triangles[index];
   if (!is_mutant(6, "mis_pdf_no_pick") && !is_mutant(6, "mis_pdf_by_area")) return {};
+  Triangle tri = triangles[index];
   if (tri.light == kNoLight || !triangle_lights_point(tri, p)) return mutated(0.0f);
   // The area sampler's pdf, although the light sample was drawn by solid angle.
   if (is_mutant(6, "mis_pdf_by_area")) return mutated(triangle_light_pdf(index, wi, dist));
