@@ -128,12 +128,39 @@ Hit nearest_triangle(Ray ray, RayShear rs, Hit best);
 // hit's rounding) and of the products below.
 const float kSphereRootError = 1e-6f;
 
+// The power of the ray origin o with respect to the sphere, |o - centre|^2 - r^2 (< 0
+// inside; the product of the distances to the two roots), written from the world origin:
+// |o|^2 - 2 o.centre + (|centre|^2 - r^2), the last term as (m - r)(m + r) plus the other
+// two coordinates squared, m the centre's largest coordinate. Returns the power and the
+// size of the numbers summed for it, the scale of its rounding error. smallpt's walls have
+// centres 1e5 away and the room near the world origin: there f = o - centre is known only
+// to 1/128 per coordinate, this form to the rounding of o.centre (1e7: about 1), since
+// m - r is exact for m near r. A small sphere far from the world origin is the other way.
+vec2 sphere_power_from_world_origin(vec3 o, vec3 center, float radius) {
+  vec3 a = abs(center);
+  float m = a.z;
+  float others = a.x * a.x + a.y * a.y;
+  if (a.x >= a.y && a.x >= a.z) {
+    m = a.x;
+    others = a.y * a.y + a.z * a.z;
+  } else if (a.y >= a.z) {
+    m = a.y;
+    others = a.x * a.x + a.z * a.z;
+  }
+  float lead = (m - radius) * (m + radius);
+  float oo = dot(o, o);
+  float power = (oo + (lead + others)) - 2.0f * dot(o, center);
+  float scale = oo + 2.0f * dot(abs(o), a) + abs(lead) + others;
+  return vec2(power, scale);
+}
+
 // Returns a hit with sphere `index` if it is nearer than `best`, else `best`.
 // Both differences of squares are taken as (x - r)(x + r) of lengths, not x^2 - r^2: with
 // smallpt's walls (radius 1e5) x^2 and r^2 are 1e10, where a float's step is 1024, while
-// x - r keeps the step of x (1/128). A root is taken only beyond its own error bound (as
-// pbrt does with interval arithmetic): a ray leaving a wall of radius 1e5 finds that wall
-// again within a few hundredths of a unit, which the spawn offset cannot step over.
+// x - r keeps the step of x (1/128). The power c (the product of the roots) is taken in
+// whichever of two forms rounds less (sphere_power_from_world_origin). A root is taken only
+// beyond its own error bound (as pbrt does with interval arithmetic): a ray leaving a wall
+// of radius 1e5 would otherwise find that wall again next to where it left it.
 Hit hit_sphere(Ray ray, uint index, Hit best) {
   vec3 center = spheres[index].center;
   float radius = spheres[index].radius;
@@ -144,12 +171,18 @@ Hit hit_sphere(Ray ray, uint index, Hit best) {
   if (disc < 0.0f) return best;
   float fl = length(f);
   float c = (fl - radius) * (fl + radius);
+  float c_scale = fl * fl + radius * radius;
+  vec2 from_world = sphere_power_from_world_origin(ray.origin, center, radius);
+  if (from_world.y < c_scale) {
+    c = from_world.x;
+    c_scale = from_world.y;
+  }
   float q = b + (b >= 0.0f ? sqrt(disc) : -sqrt(disc));  // the root of larger magnitude
   if (q == 0.0f) return best;  // the origin at the centre of a sphere of radius 0
   float t_small = c / q;       // the other root, by Vieta's formula
   float t = kInfinity;
   if (q > kSphereRootError * (fl + radius)) t = q;
-  if (t_small > kSphereRootError * (fl * fl + radius * radius) / abs(q)) t = min(t, t_small);
+  if (t_small > kSphereRootError * c_scale / abs(q)) t = min(t, t_small);
   if (t >= best.t) return best;
   return Hit(t, 0.0f, 0.0f, index, kPrimSphere);
 }
