@@ -10,7 +10,13 @@ Nothing in common/ includes labs/, a stage, cpu/ or gpu/; cpu/ and gpu/ do not i
 each other, common/app or a stage. labs/ and the generated kernel_definitions.glsl are
 chosen by the build (cmake/Labs.cmake), never by a file in common/.
 
-  tools/check_layout.py [--root DIR]   lists each include against the arrows; exit 1 if any
+Also: a stage folder holds its main.cpp, integrator.glsl and README.md and nothing else
+(the build writes the rest), and the stages' main.cpp files are one program: past the
+record that names the stage and its kernels, each must read as every other does (the
+steps the reader follows in docs/README.md, "What main.cpp is"). They are written out in
+each stage on purpose, for the reader; this keeps the five copies from drifting apart.
+
+  tools/check_layout.py [--root DIR]   lists each problem; exit 1 if any
 """
 import argparse
 import os
@@ -87,15 +93,62 @@ def check(root):
     return problems
 
 
+STAGE_FILES = {"main.cpp", "integrator.glsl", "README.md"}
+# The line that ends a stage's own record in its main.cpp: `stage2::kernels(),`.
+KERNELS_LINE = re.compile(r"^\s*stage\d+::kernels\(\),\s*$")
+
+
+def stage_program(text, stage):
+    """A main.cpp without what names its own stage: its includes but its kernels.h, and
+    every line after its record (the one that names stageN::kernels()). None if it has no
+    such line."""
+    lines = text.splitlines()
+    marks = [i for i, line in enumerate(lines) if KERNELS_LINE.match(line)]
+    if len(marks) != 1:
+        return None
+    includes = [line for line in lines if INCLUDE.match(line) and f'"{stage}/' not in line]
+    return "\n".join(includes + lines[marks[0] + 1:])
+
+
+def check_stages(root):
+    problems = []
+    programs = {}
+    for top in sorted(os.listdir(root)):
+        folder = os.path.join(root, top)
+        if room_of(top + "/x/y") != "stage" or not os.path.isdir(folder):
+            continue
+        for name in sorted(set(os.listdir(folder)) - STAGE_FILES):
+            problems.append(f"{top}/{name}: a stage folder holds only {', '.join(sorted(STAGE_FILES))} "
+                            "(cmake/PtStage.cmake writes the rest into the build folder)")
+        main_cpp = os.path.join(folder, "main.cpp")
+        if os.path.exists(main_cpp):
+            with open(main_cpp, encoding="utf-8", errors="replace") as fh:
+                program = stage_program(fh.read(), top)
+            if program is None:
+                problems.append(f"{top}/main.cpp: no single line `stageN::kernels(),` ends the stage's record")
+            else:
+                programs[top] = program
+    if programs:
+        first = min(programs)
+        for stage, program in sorted(programs.items()):
+            if program != programs[first]:
+                ours, theirs = program.splitlines(), programs[first].splitlines()
+                at = next((i for i, (a, b) in enumerate(zip(ours, theirs)) if a != b), min(len(ours), len(theirs)))
+                line = ours[at].strip() if at < len(ours) else "(its end)"
+                problems.append(f"{stage}/main.cpp: its program differs from {first}/main.cpp's at `{line}`: "
+                                "the stages run the same steps (change them in every stage)")
+    return problems
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     args = parser.parse_args()
-    problems = check(args.root)
+    problems = check(args.root) + check_stages(args.root)
     for p in problems:
         print("error: " + p)
-    print(f"check_layout: {len(problems)} include(s) against the arrows" if problems
-          else "check_layout: every include follows the arrows")
+    print(f"check_layout: {len(problems)} problem(s)" if problems
+          else "check_layout: every include follows the arrows; the stage folders hold one program")
     return 1 if problems else 0
 
 

@@ -2,9 +2,12 @@
 """Test of tools/check_layout.py (the arrows of the house, docs/README.md): in a small tree
 of its own, a file in common/ that includes labs/, a stage, cpu/ or gpu/ fails the check,
 as do a lower room including a higher one and a stage including another stage; the
-allowed includes pass. Also: the project's own tree passes.
+allowed includes pass. The stage folders: a stage whose main.cpp runs other steps than the
+others', or a folder with a file besides main.cpp, integrator.glsl and README.md, fails.
+Also: the project's own tree passes.
 usage: tools/test_check_layout.py   (ctest entry layout_check_catches_wrong_arrows)"""
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -33,16 +36,34 @@ WRONG = [
 ]
 
 
-def tree(root, files):
+# What follows a stage's record in a main.cpp of the test tree (the steps, shortened).
+PROGRAM = """                        {pt::make_cpu_backend}};
+  return pt::run_guarded(stage.info.name, [&] {
+    pt::Scene scene = pt::load_stage_scene(*options, stage);
+  });
+}
+"""
+
+
+def tree(root, files, program=PROGRAM):
     for rel, includes in files.items():
         path = os.path.join(root, rel)
         os.makedirs(os.path.dirname(path), exist_ok=True)
         with open(path, "w", encoding="utf-8") as fh:
             fh.write("// a file of the test tree\n" + "".join(f'#include "{i}"\n' for i in includes))
+            stage = re.match(r"stage(\d+)_\w+/main\.cpp$", rel)
+            if stage:
+                fh.write(f"int main() {{\n  const pt::Stage stage{{{{}},\n  stage{stage.group(1)}::kernels(),\n" + program)
 
 
 def run(root):
     return subprocess.run([sys.executable, TOOL, "--root", root], capture_output=True, text=True)
+
+
+def verdict(ok, what, r):
+    """Prints the line of one case (with the checker's output when it failed); 1 if failed."""
+    print(("ok" if ok else "FAILED") + ": " + what + ("" if ok else "\n" + r.stdout))
+    return 0 if ok else 1
 
 
 def main():
@@ -51,20 +72,33 @@ def main():
         good = os.path.join(tmp, "good")
         tree(good, ALLOWED)
         r = run(good)
-        ok = r.returncode == 0
-        failed += not ok
-        print(("ok" if ok else "FAILED") + ": the allowed includes pass" + ("" if ok else "\n" + r.stdout))
+        failed += verdict(r.returncode == 0, "the allowed includes pass", r)
         for n, (rel, target) in enumerate(WRONG):
             root = os.path.join(tmp, f"wrong{n}")
             tree(root, dict(ALLOWED, **{rel: ALLOWED.get(rel, []) + [target]}))
             r = run(root)
-            ok = r.returncode == 1 and f"{rel}:" in r.stdout and target in r.stdout
-            failed += not ok
-            print(("ok" if ok else "FAILED") + f": {rel} including {target} is caught" + ("" if ok else "\n" + r.stdout))
+            failed += verdict(r.returncode == 1 and f"{rel}:" in r.stdout and target in r.stdout,
+                              f"{rel} including {target} is caught", r)
+        stages = dict(ALLOWED, **{"stage2_montecarlo/main.cpp": [
+            i.replace("stage1_raycast", "stage2_montecarlo") for i in ALLOWED["stage1_raycast/main.cpp"]]})
+        two = os.path.join(tmp, "two_stages")
+        tree(two, stages)
+        r = run(two)
+        failed += verdict(r.returncode == 0, "two stages running the same steps pass", r)
+        drift = os.path.join(tmp, "drift")
+        tree(drift, stages)
+        tree(drift, {"stage2_montecarlo/main.cpp": stages["stage2_montecarlo/main.cpp"]},
+             PROGRAM.replace("    pt::Scene", "    pt::print_banner();\n    pt::Scene"))
+        r = run(drift)
+        failed += verdict(r.returncode == 1 and "stage2_montecarlo/main.cpp: its program differs" in r.stdout
+                          and "print_banner" in r.stdout, "a stage whose program has drifted is caught", r)
+        extra = os.path.join(tmp, "extra")
+        tree(extra, dict(stages, **{"stage2_montecarlo/cpu_kernel.cpp": []}))
+        r = run(extra)
+        failed += verdict(r.returncode == 1 and "stage2_montecarlo/cpu_kernel.cpp: a stage folder holds only" in r.stdout,
+                          "a stage folder with a file of the build's is caught", r)
     r = run(os.path.dirname(HERE))
-    ok = r.returncode == 0
-    failed += not ok
-    print(("ok" if ok else "FAILED") + ": the project's tree follows the arrows" + ("" if ok else "\n" + r.stdout))
+    failed += verdict(r.returncode == 0, "the project's tree follows the arrows", r)
     print(f"check_layout test: {failed} failed")
     return 1 if failed else 0
 
