@@ -16,17 +16,8 @@
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/spherical_triangle.glsl"
 #include "common/kernel/texture.glsl"
-
-struct LightSample {
-  vec3 wi;         // unit direction from the shading point towards the light
-  float dist;      // distance to the light point (kInfinity for the sky)
-  vec3 weight;     // Le / (pdf_solid_angle x pick probability); 0 when nothing is lit
-  float pdf;       // pdf_solid_angle x pick probability (0 for delta lights)
-};
-
-LightSample no_light() {
-  return LightSample(vec3(0.0f, 0.0f, 1.0f), 0.0f, vec3(0.0f), 0.0f);
-}
+#include "common/kernel/light_sample.glsl"
+#include "common/kernel/punctual_light.glsl"
 
 // The first entry whose cumulative probability exceeds u (binary search).
 uint pick_light(float u) {
@@ -110,31 +101,6 @@ LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
   float pdf = pick / (2.0f * kPi * one_minus_cos_max);
   if (!(pdf > 0.0f) || isinf(pdf)) return no_light();
   return LightSample(wi, dist, vec3(materials[s.material].emission) / pdf, pdf);
-}
-
-// A spot light's share of its intensity in the direction at cosine cos_d from its axis:
-// full within the inner cone, none beyond the outer, and between them the square of the
-// linear ramp in the cosine (KHR_lights_punctual's recommended falloff).
-float spot_falloff(PointLight l, float cos_d) {
-  float t = clamp((cos_d - l.cos_outer) / max(1e-3f, l.cos_inner - l.cos_outer), 0.0f, 1.0f);
-  return t * t;
-}
-
-// A punctual light: the light reaches p from one direction only (a delta), so the sample
-// is that direction with pdf 0 and weight (incident radiance integrated) / pick. A point
-// light of intensity I gives I / d^2, a spot light I falloff / d^2, a directional light
-// of irradiance E gives E from -direction, at no distance's falloff.
-LightSample sample_point_light(uint index, vec3 p, float pick) {
-  PointLight l = point_lights[index];
-  if (l.kind == kPunctualDirectional) return LightSample(-vec3(l.direction), kInfinity, vec3(l.intensity) / pick, 0.0f);
-  vec3 d = vec3(l.position) - p;
-  float dist2 = dot(d, d);
-  float dist = sqrt(dist2);
-  if (!(dist > 0.0f)) return no_light();
-  vec3 wi = d / dist;
-  float falloff = l.kind == kPunctualSpot ? spot_falloff(l, -dot(wi, vec3(l.direction))) : 1.0f;
-  if (!(falloff > 0.0f)) return no_light();
-  return LightSample(wi, dist, vec3(l.intensity) * (falloff / (dist2 * pick)), 0.0f);
 }
 
 // The uniform sky: a cosine-weighted direction about the normal n, density cos / pi.

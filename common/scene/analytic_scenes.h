@@ -78,7 +78,7 @@ constexpr float kLargeLightHalf = 2.0f;
 // builtin:point_floor — the floor of FloorLightScene under a point light of intensity I
 // at the emitter's height: radiance albedo I cos(theta) / (pi d^2). Only stages 4 and 5
 // see it. builtin:spot_floor — the same with a spot light pointing straight down: times
-// its falloff (common/kernel/lights.glsl spot_falloff).
+// its falloff (common/kernel/punctual_light.glsl spot_falloff).
 // builtin:sun_floor — the floor under a directional light of irradiance E at angle theta
 // from the vertical: albedo E cos(theta) / pi everywhere.
 struct PointFloorScene {
