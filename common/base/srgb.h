@@ -1,6 +1,6 @@
 // The sRGB transfer function (IEC 61966-2-1): an sRGB-encoded value as linear light, in
 // double on the host. common/kernel/texture_lookup.glsl decodes texels with the same curve
-// in the kernel; the light table's texture means (common/scene/scene.cpp), the grey levels
+// in the kernel; the light table's texture means (common/scene/scene_lights.cpp), the grey levels
 // of the error map and of pt_compare's picture (common/app/), and the tests' expected
 // texel values use this one.
 #pragma once

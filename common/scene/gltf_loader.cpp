@@ -1,7 +1,7 @@
 // The glTF 2.0 loader of the contract (README.md) "Scenes": every triangle primitive of the default
 // scene with node transforms applied, metallic-roughness factors as materials (gltf_materials.cpp),
-// KHR_lights_punctual point lights and the first camera. Checks of the file itself live
-// behind gltf_validate.h; what is not modelled is named once on stderr.
+// KHR_lights_punctual point lights and the first camera (both gltf_cameras_lights.cpp). Checks of
+// the file itself live behind gltf_validate.h; what is not modelled is named once on stderr.
 #include <cmath>
 #include <map>
 #include <string>
@@ -14,6 +14,7 @@
 
 #include "common/base/error.h"
 #include "common/scene/gltf_materials.h"
+#include "common/scene/gltf_scene_builder.h"
 #include "common/scene/gltf_textures.h"
 #include "common/scene/gltf_validate.h"
 #include "common/scene/scene_loading.h"
@@ -22,7 +23,6 @@ namespace pt {
 
 namespace {
 
-using gltf::checked_float;
 using gltf::fail;
 
 // tinygltf looks for buffers in the scene's folder, then in the working directory; only
@@ -35,7 +35,7 @@ bool exists_in_scene_folder(const std::string& file, void* user_data) {
 
 tinygltf::Model parse_model(gltf::SourceFile& source, const std::string& path) {
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&gltf::keep_image_bytes, nullptr);  // OpenImageIO decodes them (gltf_textures.cpp)
+  loader.SetImageLoader(&gltf::keep_image_bytes, nullptr);  // OpenImageIO decodes them (gltf_images.cpp)
   loader.SetFsCallbacks({&exists_in_scene_folder, &tinygltf::ExpandFilePath, &tinygltf::ReadWholeFile,
                          &tinygltf::WriteWholeFile, &source.base_dir});
   tinygltf::Model model;
@@ -73,242 +73,14 @@ void warn_unmodelled(const tinygltf::Model& model, const std::string& file) {
   if (!model.skins.empty()) warn_once(file + ": scene has skins; they are not modelled (drawn in bind pose)");
 }
 
-// Walks the default scene and fills a pt::Scene.
-class SceneBuilder {
- public:
-  SceneBuilder(const tinygltf::Model& model, const std::string& file)
-      : model_(model), file_(file), textures_(model, file) {
-    scene_.name = file;
-  }
-
-  // Depth first, children in order, with an explicit stack (hierarchies can be deep).
-  void add_tree(int root) {
-    std::vector<std::pair<int, glm::dmat4>> stack = {{root, glm::dmat4(1.0)}};
-    while (!stack.empty()) {
-      auto [index, parent_world] = stack.back();
-      stack.pop_back();
-      const tinygltf::Node& node = model_.nodes[index];
-      glm::dmat4 world = parent_world * local_transform(node);
-      add_node(index, node, world);
-      for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
-        stack.emplace_back(*child, world);
-      }
+bool all_finite(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(float(m[c][r]))) return false;
     }
   }
-
-  // The scene; textures and vertex colours when a drawn triangle has them (both arrays
-  // then parallel to materials and triangles), their images decoded now.
-  Scene take() {
-    if (attributes_on_) {
-      attributes_.resize(scene_.triangles.size(), no_triangle_attributes());
-      scene_.triangle_attributes = std::move(attributes_);
-      scene_.material_textures = material_textures_;
-      textures_.decode_into(scene_);
-      mark_alpha_masked(scene_);
-    }
-    return std::move(scene_);
-  }
-
- private:
-  void add_node(int index, const tinygltf::Node& node, const glm::dmat4& world) {
-    std::string where = "nodes[" + std::to_string(index) + "]";
-    if (!all_finite(world))
-      fail(file_, where + ": its world transform overflows 32-bit floats: " + gltf::kReexport);
-    if (node.camera != -1) add_camera(node.camera, world, node, where);
-    if (node.mesh != -1) add_mesh(node.mesh, world);
-    auto light = node.extensions.find("KHR_lights_punctual");
-    if (light != node.extensions.end()) add_light(light->second.Get("light").GetNumberAsInt(), world);
-  }
-
-  static bool all_finite(const glm::dmat4& m) {
-    for (int c = 0; c < 4; ++c) {
-      for (int r = 0; r < 4; ++r) {
-        if (!std::isfinite(float(m[c][r]))) return false;
-      }
-    }
-    return true;
-  }
-
-  // Every camera of the default scene, in the order met (a camera that several nodes place:
-  // at the first); the first is the scene's camera until --camera picks another.
-  void add_camera(int index, const glm::dmat4& world, const tinygltf::Node& node, const std::string& where) {
-    for (const SceneCamera& c : scene_.cameras) {
-      if (c.index == index) return;
-    }
-    const tinygltf::Camera& c = model_.cameras[index];
-    std::string what = "cameras[" + std::to_string(index) + "]";
-    CameraDesc desc;
-    desc.to_world = glm::mat4(world);
-    if (c.type == "perspective") {
-      desc.kind = kCameraPerspective;
-      desc.yfov = checked_float(file_, c.perspective.yfov, what + ".perspective.yfov", 1e-6, 3.14159);
-      if (c.perspective.aspectRatio != 0.0)
-        desc.aspect_ratio = checked_float(file_, c.perspective.aspectRatio, what + ".perspective.aspectRatio", 1e-6, 1e6);
-    } else if (c.type == "orthographic") {
-      desc.kind = kCameraOrthographic;
-      desc.xmag = checked_float(file_, c.orthographic.xmag, what + ".orthographic.xmag");
-      desc.ymag = checked_float(file_, c.orthographic.ymag, what + ".orthographic.ymag");
-      if (desc.xmag == 0.0f || desc.ymag == 0.0f)
-        fail(file_, what + ": xmag and ymag must not be zero; re-export it");
-    } else {
-      fail(file_,
-           what + ".type '" + c.type + "' is neither perspective nor orthographic: " + gltf::kReexport);
-    }
-    if (!scene_.camera) scene_.camera = desc;
-    scene_.cameras.push_back(SceneCamera{desc, index, c.name, node.name.empty() ? where : node.name});
-  }
-
-  // A KHR_lights_punctual light on a node: a point light at the node's origin, a spot or
-  // directional light shining along the node's -Z. Units are taken as radiometric: the
-  // intensity as W/sr (point, spot) or W/m^2 (directional), as the renderer's other lights.
-  void add_light(int index, const glm::dmat4& world) {
-    const tinygltf::Light& light = model_.lights[index];
-    std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
-    PointLight out{};
-    if (light.type == "point") {
-      out.kind = kPunctualPoint;
-    } else if (light.type == "spot") {
-      out.kind = kPunctualSpot;
-      const double half_pi = 1.5707963267948966;
-      float inner = checked_float(file_, light.spot.innerConeAngle, where + ".spot.innerConeAngle", 0.0, half_pi);
-      float outer = checked_float(file_, light.spot.outerConeAngle, where + ".spot.outerConeAngle", 0.0, half_pi);
-      if (!(inner < outer))
-        fail(file_, where + ".spot.innerConeAngle must be less than its outerConeAngle: " + gltf::kReexport);
-      out.cos_inner = std::cos(inner), out.cos_outer = std::cos(outer);
-    } else if (light.type == "directional") {
-      out.kind = kPunctualDirectional;
-    } else {
-      warn_once(file_ + ": scene has lights of type \"" + light.type +
-                "\" (KHR_lights_punctual); only point, spot and directional lights are modelled");
-      return;
-    }
-    float intensity = checked_float(file_, light.intensity, where + ".intensity", 0.0);
-    glm::vec3 color(1.0f);
-    if (!light.color.empty() && light.color.size() != 3)
-      fail(file_, where + ".color needs 3 numbers: " + gltf::kReexport);
-    for (std::size_t k = 0; k < light.color.size(); ++k) {
-      color[int(k)] = checked_float(file_, light.color[k], where + ".color[" + std::to_string(k) + "]", 0.0);
-    }
-    out.intensity = intensity * color;
-    if (!std::isfinite(out.intensity.x + out.intensity.y + out.intensity.z))
-      fail(file_, where + ": intensity x color overflows: " + gltf::kReexport);
-    if (light.range > 0.0 && out.kind != kPunctualDirectional)
-      warn_once(file_ + ": scene has lights with a range; it is ignored (light falls off as 1 / d^2 to any distance)");
-    out.position = glm::vec3(world[3]);
-    if (out.kind != kPunctualPoint) {
-      glm::dvec3 axis = -glm::dvec3(world[2]);  // the node's -Z in the world
-      double length = glm::length(axis);
-      if (!(length > 0.0) || !std::isfinite(length)) {
-        warn_once(file_ + ": a " + light.type + " light's node is scaled to nothing; the light is skipped");
-        return;
-      }
-      out.direction = glm::vec3(axis / length);
-    }
-    scene_.point_lights.push_back(out);
-  }
-
-  void add_mesh(int mesh_index, const glm::dmat4& world) {
-    const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
-    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-      const tinygltf::Primitive& prim = mesh.primitives[p];
-      std::string where = "meshes[" + std::to_string(mesh_index) + "].primitives[" + std::to_string(p) + "]";
-      if (!prim.targets.empty())
-        warn_once(file_ + ": scene has morph targets; they are not modelled (base shape)");
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
-        warn_once(file_ + ": scene has primitives of mode " + std::to_string(prim.mode) +
-                  " (points, lines, strips or fans); only triangle lists (mode 4) are drawn");
-        continue;
-      }
-      auto position = prim.attributes.find("POSITION");
-      if (position == prim.attributes.end()) {
-        warn_once(file_ + ": " + where + " has no POSITION; it is skipped");
-        continue;
-      }
-      add_primitive(prim, position->second, where, world);
-    }
-  }
-
-  void add_primitive(const tinygltf::Primitive& prim, int position_accessor, const std::string& where,
-                     const glm::dmat4& world) {
-    std::string what = "accessors[" + std::to_string(position_accessor) + "] (POSITION of " + where + ")";
-    std::vector<glm::vec3> positions = gltf::read_positions(model_, position_accessor, file_, what);
-    std::vector<std::uint32_t> indices;
-    if (prim.indices != -1) {
-      what = "accessors[" + std::to_string(prim.indices) + "] (indices of " + where + ")";
-      indices = gltf::read_indices(model_, prim.indices, positions.size(), file_, what);
-    } else {
-      for (std::uint32_t i = 0; i < positions.size(); ++i) indices.push_back(i);
-    }
-    if (indices.size() % 3 != 0) {
-      fail(file_, what + " has " + std::to_string(indices.size()) +
-                      " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
-    }
-    uint material = material_index(prim.material);
-    // TEXCOORD_0 where the material has a texture, COLOR_0 where the primitive has one;
-    // the attributes too where the material has an alpha mask.
-    const MaterialTextures& mt = material_textures_[material];
-    const bool textured =
-        mt.base_color != kNoTexture || mt.emissive != kNoTexture || mt.metallic_roughness != kNoTexture;
-    const bool masked = mt.alpha_cutoff > 0.0f;
-    std::vector<glm::vec2> uv;
-    std::vector<glm::vec4> colors;
-    auto texcoord = prim.attributes.find("TEXCOORD_0"), color = prim.attributes.find("COLOR_0");
-    if (textured && texcoord != prim.attributes.end()) {
-      uv = gltf::read_texcoords(model_, texcoord->second, positions.size(), file_,
-                                "accessors[" + std::to_string(texcoord->second) + "] (TEXCOORD_0 of " + where + ")");
-    } else if (textured) {
-      warn_once(file_ + ": " + where + " has a textured material but no TEXCOORD_0; its textures are read at uv (0, 0)");
-    }
-    if (color != prim.attributes.end()) {
-      colors = gltf::read_colors(model_, color->second, positions.size(), file_,
-                                 "accessors[" + std::to_string(color->second) + "] (COLOR_0 of " + where + ")");
-    }
-    // The attributes start with the first triangle that needs them (those before get the defaults).
-    if ((textured || masked || !colors.empty()) && !attributes_on_) {
-      attributes_.assign(scene_.triangles.size(), no_triangle_attributes());
-      attributes_on_ = true;
-    }
-    for (std::size_t t = 0; t < indices.size(); t += 3) {
-      glm::vec3 p[3];
-      for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::dvec4(positions[indices[t + k]], 1.0));
-      // Skip what has no area once in 32-bit floats (or overflowed)
-      glm::dvec3 n = glm::cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
-      if (!(glm::dot(n, n) > 0.0) || !std::isfinite(glm::dot(n, n))) {
-        ++scene_.degenerate_triangles;
-        continue;
-      }
-      scene_.add_triangle(p[0], p[1], p[2], material);
-      if (!attributes_on_) continue;
-      TriangleAttributes a = no_triangle_attributes();
-      if (!uv.empty()) a.uv0 = uv[indices[t]], a.uv1 = uv[indices[t + 1]], a.uv2 = uv[indices[t + 2]];
-      if (!colors.empty()) {
-        a.color0 = colors[indices[t]], a.color1 = colors[indices[t + 1]], a.color2 = colors[indices[t + 2]];
-      }
-      attributes_.push_back(a);
-    }
-  }
-
-  // Each glTF material used is added once; -1 is glTF's default material.
-  uint material_index(int gltf_index) {
-    auto found = materials_.find(gltf_index);
-    if (found != materials_.end()) return found->second;
-    Material m = gltf_index == -1
-                     ? make_gltf_material(glm::vec3(1.0f), 1.0f, 1.0f, 0.0f, 1.5f, glm::vec3(0.0f), false)
-                     : gltf::convert_material(model_, gltf_index, file_);
-    // Its textures (noted now, decoded by take() if a drawn triangle uses them).
-    material_textures_.push_back(gltf_index == -1 ? no_material_textures() : textures_.material_textures(gltf_index));
-    return materials_[gltf_index] = scene_.add_material(m);
-  }
-
-  const tinygltf::Model& model_;
-  std::string file_;
-  Scene scene_;
-  std::map<int, uint> materials_;  // glTF material index -> Scene::materials index
-  gltf::TextureBuilder textures_;   // the textures the materials read
-  std::vector<MaterialTextures> material_textures_;  // parallel to scene_.materials
-  std::vector<TriangleAttributes> attributes_;       // parallel to scene_.triangles once needed
-  bool attributes_on_ = false;                       // a triangle has needed them
-};
+  return true;
+}
 
 // The roots of the default scene (scene 0 when none is named; every root node when
 // the file has no scenes).
@@ -323,12 +95,143 @@ std::vector<int> scene_roots(const tinygltf::Model& model, const std::vector<int
 
 }  // namespace
 
+namespace gltf {
+
+void SceneBuilder::add_tree(int root) {
+  std::vector<std::pair<int, glm::dmat4>> stack = {{root, glm::dmat4(1.0)}};
+  while (!stack.empty()) {
+    auto [index, parent_world] = stack.back();
+    stack.pop_back();
+    const tinygltf::Node& node = model_.nodes[index];
+    glm::dmat4 world = parent_world * local_transform(node);
+    add_node(index, node, world);
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+      stack.emplace_back(*child, world);
+    }
+  }
+}
+
+Scene SceneBuilder::take() {
+  if (attributes_on_) {
+    attributes_.resize(scene_.triangles.size(), no_triangle_attributes());
+    scene_.triangle_attributes = std::move(attributes_);
+    scene_.material_textures = material_textures_;
+    textures_.decode_into(scene_);
+    mark_alpha_masked(scene_);
+  }
+  return std::move(scene_);
+}
+
+void SceneBuilder::add_node(int index, const tinygltf::Node& node, const glm::dmat4& world) {
+  std::string where = "nodes[" + std::to_string(index) + "]";
+  if (!all_finite(world))
+    fail(file_, where + ": its world transform overflows 32-bit floats: " + gltf::kReexport);
+  if (node.camera != -1) add_camera(node.camera, world, node, where);
+  if (node.mesh != -1) add_mesh(node.mesh, world);
+  auto light = node.extensions.find("KHR_lights_punctual");
+  if (light != node.extensions.end()) add_light(light->second.Get("light").GetNumberAsInt(), world);
+}
+
+void SceneBuilder::add_mesh(int mesh_index, const glm::dmat4& world) {
+  const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& prim = mesh.primitives[p];
+    std::string where = "meshes[" + std::to_string(mesh_index) + "].primitives[" + std::to_string(p) + "]";
+    if (!prim.targets.empty())
+      warn_once(file_ + ": scene has morph targets; they are not modelled (base shape)");
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
+      warn_once(file_ + ": scene has primitives of mode " + std::to_string(prim.mode) +
+                " (points, lines, strips or fans); only triangle lists (mode 4) are drawn");
+      continue;
+    }
+    auto position = prim.attributes.find("POSITION");
+    if (position == prim.attributes.end()) {
+      warn_once(file_ + ": " + where + " has no POSITION; it is skipped");
+      continue;
+    }
+    add_primitive(prim, position->second, where, world);
+  }
+}
+
+void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_accessor, const std::string& where,
+                                 const glm::dmat4& world) {
+  std::string what = "accessors[" + std::to_string(position_accessor) + "] (POSITION of " + where + ")";
+  std::vector<glm::vec3> positions = gltf::read_positions(model_, position_accessor, file_, what);
+  std::vector<std::uint32_t> indices;
+  if (prim.indices != -1) {
+    what = "accessors[" + std::to_string(prim.indices) + "] (indices of " + where + ")";
+    indices = gltf::read_indices(model_, prim.indices, positions.size(), file_, what);
+  } else {
+    for (std::uint32_t i = 0; i < positions.size(); ++i) indices.push_back(i);
+  }
+  if (indices.size() % 3 != 0) {
+    fail(file_, what + " has " + std::to_string(indices.size()) +
+                    " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
+  }
+  uint material = material_index(prim.material);
+  // TEXCOORD_0 where the material has a texture, COLOR_0 where the primitive has one;
+  // the attributes too where the material has an alpha mask.
+  const MaterialTextures& mt = material_textures_[material];
+  const bool textured =
+      mt.base_color != kNoTexture || mt.emissive != kNoTexture || mt.metallic_roughness != kNoTexture;
+  const bool masked = mt.alpha_cutoff > 0.0f;
+  std::vector<glm::vec2> uv;
+  std::vector<glm::vec4> colors;
+  auto texcoord = prim.attributes.find("TEXCOORD_0"), color = prim.attributes.find("COLOR_0");
+  if (textured && texcoord != prim.attributes.end()) {
+    uv = gltf::read_texcoords(model_, texcoord->second, positions.size(), file_,
+                              "accessors[" + std::to_string(texcoord->second) + "] (TEXCOORD_0 of " + where + ")");
+  } else if (textured) {
+    warn_once(file_ + ": " + where + " has a textured material but no TEXCOORD_0; its textures are read at uv (0, 0)");
+  }
+  if (color != prim.attributes.end()) {
+    colors = gltf::read_colors(model_, color->second, positions.size(), file_,
+                               "accessors[" + std::to_string(color->second) + "] (COLOR_0 of " + where + ")");
+  }
+  // The attributes start with the first triangle that needs them (those before get the defaults).
+  if ((textured || masked || !colors.empty()) && !attributes_on_) {
+    attributes_.assign(scene_.triangles.size(), no_triangle_attributes());
+    attributes_on_ = true;
+  }
+  for (std::size_t t = 0; t < indices.size(); t += 3) {
+    glm::vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::dvec4(positions[indices[t + k]], 1.0));
+    // Skip what has no area once in 32-bit floats (or overflowed)
+    glm::dvec3 n = glm::cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
+    if (!(glm::dot(n, n) > 0.0) || !std::isfinite(glm::dot(n, n))) {
+      ++scene_.degenerate_triangles;
+      continue;
+    }
+    scene_.add_triangle(p[0], p[1], p[2], material);
+    if (!attributes_on_) continue;
+    TriangleAttributes a = no_triangle_attributes();
+    if (!uv.empty()) a.uv0 = uv[indices[t]], a.uv1 = uv[indices[t + 1]], a.uv2 = uv[indices[t + 2]];
+    if (!colors.empty()) {
+      a.color0 = colors[indices[t]], a.color1 = colors[indices[t + 1]], a.color2 = colors[indices[t + 2]];
+    }
+    attributes_.push_back(a);
+  }
+}
+
+uint SceneBuilder::material_index(int gltf_index) {
+  auto found = materials_.find(gltf_index);
+  if (found != materials_.end()) return found->second;
+  Material m = gltf_index == -1
+                   ? make_gltf_material(glm::vec3(1.0f), 1.0f, 1.0f, 0.0f, 1.5f, glm::vec3(0.0f), false)
+                   : gltf::convert_material(model_, gltf_index, file_);
+  // Its textures (noted now, decoded by take() if a drawn triangle uses them).
+  material_textures_.push_back(gltf_index == -1 ? no_material_textures() : textures_.material_textures(gltf_index));
+  return materials_[gltf_index] = scene_.add_material(m);
+}
+
+}  // namespace gltf
+
 Scene load_gltf(const std::string& path) {
   gltf::SourceFile source = gltf::read_and_precheck(path);
   tinygltf::Model model = parse_model(source, path);
   std::vector<int> parents = gltf::check_model(model, path);
   warn_unmodelled(model, path);
-  SceneBuilder builder(model, path);
+  gltf::SceneBuilder builder(model, path);
   for (int root : scene_roots(model, parents)) builder.add_tree(root);
   Scene scene = builder.take();
   if (scene.degenerate_triangles > 0) {

@@ -1,6 +1,6 @@
 // Tests of the camera rules of the contract (README.md) "Camera" for real files (issue #19):
 // with no camera the bounds are framed from a raised three-quarter view with every corner
-// in the picture (common/scene/scene.cpp frame_bounds); --camera N|NAME picks one of the
+// in the picture (common/scene/scene_camera.cpp frame_bounds); --camera N|NAME picks one of the
 // file's cameras (select_camera); a perspective camera's aspectRatio sets the image height
 // when only --width is given (common/app/app.cpp), and a scene that will render black is
 // warned about.

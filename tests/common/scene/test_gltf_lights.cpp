@@ -1,4 +1,4 @@
-// Tests of the glTF loader's KHR_lights_punctual lights (issue #19, common/scene/gltf_loader.cpp
+// Tests of the glTF loader's KHR_lights_punctual lights (issue #19, common/scene/gltf_cameras_lights.cpp
 // add_light): a spot or directional light shines along its node's -Z, rotated and scaled
 // as the node is; a spot light's cone angles become cosines, and angles outside the
 // extension's rules are refused in one line; a light type the renderer does not model is

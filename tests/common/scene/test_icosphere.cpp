@@ -1,5 +1,5 @@
 // The tessellated sphere of the BVH's large-scene tests and builtin:furnace_mesh
-// (add_icosphere, common/scene/scene.cpp): its count, its closure and its orientation.
+// (add_icosphere, common/scene/scene_shapes.cpp): its count, its closure and its orientation.
 // A closed surface is what makes the furnace's closed form hold for the mesh.
 #include <catch2/catch.hpp>
 
