@@ -1,6 +1,7 @@
 // Test support for the texture tests (tests/common/kernel/test_texture.cpp,
-// tests/common/scene/test_gltf_textures.cpp, tests/stages/test_texture_images.cpp): a texel
-// packed as the texture table stores it (8-bit RGBA, R in the low byte; scene_types.h Texture).
+// tests/common/scene/test_gltf_textures.cpp, test_gltf_images.cpp, test_texture_scene.cpp,
+// tests/stages/test_texture_images.cpp, test_texture_emissive_alpha.cpp): a texel packed as
+// the texture table stores it (8-bit RGBA, R in the low byte; scene_types.h Texture).
 #pragma once
 
 #include <cstdint>

@@ -13,16 +13,7 @@
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
 namespace kernel {
-#include "cpu/kernel_begin.h"
-#include "common/kernel/rng.glsl"
-#include "common/kernel/camera.glsl"
-#include "common/kernel/intersect.glsl"
-#include "common/kernel/sampling.glsl"
-#include "common/kernel/bsdf.glsl"
-#include "common/kernel/spawn.glsl"
-#include "common/kernel/lights.glsl"
-#include "cpu/kernel_support.h"
-#include "tests/support/kernel_scene_binding.h"
+#include "tests/support/light_kernel.h"
 }  // namespace kernel
 }  // namespace
 
