@@ -260,12 +260,14 @@ bool hit_is_light(Hit hit) {
 
 // Whether anything lies between the surface point p (normal n) and the light sample. The
 // shadow ray starts off the surface (spawn_ray), and aims at the light point itself (pbrt's
-// SpawnRayTo). Up to its last stretch (1e-4 of its length, or kShadowEndUlps of the point)
-// any surface blocks it. Within that stretch the light's own surface may be met first,
-// since neither the point nor its hit is exact (at a grazing angle to the light, 3e-5 of
-// the ray's length in smallpt's scene): there a surface blocks only if it is no light. So
-// a light poking through a wall (smallpt's, 0.27 through its ceiling) is hidden right
-// above the wall, and not shadowed by itself (tests/common/kernel/test_shadow_rays.cpp).
+// SpawnRayTo). The nearest surface it meets decides: before the last stretch (1e-4 of the
+// ray's length, or kShadowEndUlps of the point) any surface blocks it; within the stretch
+// the light's own surface may be met first, since neither the point nor its hit is exact
+// (3e-5 of the length at a grazing angle to smallpt's light), so there a surface blocks
+// only if it is no light. So a light poking through a wall (smallpt's, 0.27 through its
+// ceiling) is hidden right above the wall, and not shadowed by itself
+// (tests/common/kernel/test_shadow_rays.cpp). The nearest hit costs about what an any-hit
+// search costs where most shadow rays are clear (stage4 on the Cornell box: 3% slower).
 bool occluded(vec3 p, vec3 n, LightSample ls) {
   Ray shadow = spawn_ray(p, n, ls.wi);
   if (ls.dist == kInfinity) return occluded_scene(shadow, kInfinity);
@@ -274,10 +276,8 @@ bool occluded(vec3 p, vec3 n, LightSample ls) {
   float length_to_light = length(to_light);
   shadow.dir = to_light / length_to_light;
   float last = max(length_to_light * 1e-4f, kShadowEndUlps * ulp_above(max(abs(y.x), max(abs(y.y), abs(y.z)))));
-  float start = max(length_to_light - last, 0.0f);
-  if (occluded_scene(shadow, start)) return true;
-  Hit hit = intersect_scene(Ray(shadow.origin + start * shadow.dir, shadow.dir), length_to_light - start);
-  return hit.kind != kPrimNone && !hit_is_light(hit);
+  Hit hit = intersect_scene(shadow, length_to_light);
+  return hit.kind != kPrimNone && (hit.t < length_to_light - last || !hit_is_light(hit));
 }
 
 #endif  // PT_LIGHTS_GLSL
