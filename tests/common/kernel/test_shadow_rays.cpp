@@ -11,7 +11,9 @@
 #include <cstdio>
 #include <random>
 
+#include "common/render/render.h"
 #include "common/scene/scene.h"
+#include "common/scene/scene_loading.h"
 #include "cpu/kernel_prelude.h"
 #include "tests/support/test_render.h"
 
@@ -29,7 +31,8 @@ TEST_CASE("shadow rays: smallpt's light through its ceiling is neither leaked ab
   s.add_sphere({50.0f, 681.6f - 0.27f, 81.6f}, 600.0f, s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(12.0f))));
   pt::build_light_table(s);
   kernel::bind_scene(s);
-  kernel::params.scene_radius = 105.0f;  // builtin:smallpt's room: the scale of spawn_ray's offset
+  // The scale of spawn_ray's offset in builtin:smallpt (its room), as a render of it sets it.
+  kernel::params.scene_radius = pt::make_frame_params(pt::load_scene("builtin:smallpt"), pt::RenderSettings{}).scene_radius;
   std::mt19937 rng(pt::test::test_seed(3));
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   // Each sample is a direction in the cone the light subtends, all of equal weight. Its

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <random>
 
+#include "common/render/render.h"
 #include "common/scene/scene.h"
+#include "common/scene/scene_loading.h"
 #include "cpu/kernel_prelude.h"
 
 namespace {  // internal linkage: each test file compiles its own copy of the kernel code
@@ -19,9 +21,11 @@ namespace kernel {
 #include "cpu/kernel_support.h"
 }  // namespace kernel
 
-// Half the diagonal of builtin:smallpt's room (its `region`, 100 x 81.6 x 170): the scale
-// of spawn_ray's offset there (render.cpp, make_frame_params).
-constexpr float kSmallptRoomRadius = 105.0f;
+// The scale of spawn_ray's offset in builtin:smallpt (its room, not its walls' spheres), as
+// a render of it sets it.
+float smallpt_scene_radius() {
+  return pt::make_frame_params(pt::load_scene("builtin:smallpt"), pt::RenderSettings{}).scene_radius;
+}
 }  // namespace
 
 TEST_CASE("sphere precision: smallpt's floor, a sphere of radius 1e5, is hit where it is and left cleanly",
@@ -30,7 +34,7 @@ TEST_CASE("sphere precision: smallpt's floor, a sphere of radius 1e5, is hit whe
   s.add_sphere({50.0f, 1e5f, 81.6f}, 1e5f, s.add_material(pt::make_diffuse(glm::vec3(0.75f))));  // floor at y = 0
   kernel::spheres = s.spheres.data();
   kernel::params.sphere_count = 1u;
-  kernel::params.scene_radius = kSmallptRoomRadius;
+  kernel::params.scene_radius = smallpt_scene_radius();
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   int misses = 0, wrong = 0, self_hits = 0;
@@ -81,7 +85,7 @@ TEST_CASE("sphere precision: a ray leaving smallpt's side wall just below the ce
   s.add_sphere(top_c, 1e5f, white);
   kernel::spheres = s.spheres.data();
   kernel::params.sphere_count = 2u;
-  kernel::params.scene_radius = kSmallptRoomRadius;
+  kernel::params.scene_radius = smallpt_scene_radius();
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   int passed_through = 0, wrong = 0, total = 0;
