@@ -190,8 +190,11 @@ Hit hit_sphere(Ray ray, uint index, Hit best) {
 // The nearest hit closer than t_max, or a hit of kind kPrimNone, every surface opaque.
 Hit intersect_opaque(Ray ray, float t_max) {
   Hit best = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
-  RayShear rs = make_ray_shear(ray.dir);
-  if (has_feature(kFeatureTriangles)) best = nearest_triangle(ray, rs, best);
+  // The shear is the triangle test's: a scene of spheres alone does without it (the CPU's
+  // kernels always have the triangles' code, hence the count).
+  if (has_feature(kFeatureTriangles) && params.triangle_count > 0u) {
+    best = nearest_triangle(ray, make_ray_shear(ray.dir), best);
+  }
   if (has_feature(kFeatureSpheres)) {
     for (uint i = 0u; i < params.sphere_count; i++) best = hit_sphere(ray, i, best);
   }
@@ -279,8 +282,10 @@ bool occluded_triangles(Ray ray, RayShear rs, float t_max);
 // finds a hit exactly when this is true.
 bool occluded_scene(Ray ray, float t_max) {
   if (has_feature(kFeatureAlphaMask)) return intersect_scene(ray, t_max).kind != kPrimNone;  // through holes
-  RayShear rs = make_ray_shear(ray.dir);
-  if (has_feature(kFeatureTriangles) && occluded_triangles(ray, rs, t_max)) return true;
+  if (has_feature(kFeatureTriangles) && params.triangle_count > 0u &&
+      occluded_triangles(ray, make_ray_shear(ray.dir), t_max)) {
+    return true;
+  }
   if (has_feature(kFeatureSpheres)) {
     Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
     for (uint i = 0u; i < params.sphere_count; i++) {
