@@ -63,27 +63,36 @@ uint sobol_dimension0(uint i) {
   return bitfieldReverse(i);
 }
 
-// Sobol's dimensions 1 to 3 of point i: the xor of the direction numbers v_k of the set
-// bits k of i, with v_k from Joe and Kuo's parameters (s, a, m_1..m_s) by the recurrence
-// v_k = (a-weighted earlier v) xor v_{k-s} xor (v_{k-s} >> s), as 32-bit fractions.
-// Dimension 1: s = 1, a = 0, m = 1 (v_{k+1} = v_k xor (v_k >> 1), from v_1 = 1/2).
-uint sobol_dimension1(uint i) {
-  uint result = 0u;
-  uint v = 0x80000000u;
-  for (; i != 0u; i >>= 1u) {
-    result ^= v & (0u - (i & 1u));  // v where bit k of i is set: no branch to mispredict
-    v ^= v >> 1u;
-  }
-  return result;
+// Sobol's dimensions 1 to 3 of point i, each computed with its bits mirrored (bit 0 the
+// fraction's first binary digit), the order in which owen_scramble() takes a fraction: a
+// scrambled coordinate then needs one mirroring instead of three. sobol_dimension1..3 below
+// mirror them back to 32-bit fractions (the tests compare those with Joe and Kuo's table).
+//
+// Dimension 1 (Joe and Kuo's s = 1, a = 0, m = 1): its direction numbers v_{k+1} = v_k xor
+// (v_k >> 1) from v_0 = 1/2 are the rows of Pascal's triangle mod 2, so read as a polynomial
+// over GF(2) (digit j the coefficient of x^j) the point is i(x + 1), i's bits the
+// coefficients. (x + 1)^(2^h) = x^(2^h) + 1 mod 2, so the substitution splits each aligned
+// block of 2h digits into halves and adds the upper to the lower: five shifts and masks
+// instead of a loop over i's bits.
+uint sobol_dimension1_mirrored(uint i) {
+  i ^= (i >> 1u) & 0x55555555u;
+  i ^= (i >> 2u) & 0x33333333u;
+  i ^= (i >> 4u) & 0x0f0f0f0fu;
+  i ^= (i >> 8u) & 0x00ff00ffu;
+  i ^= (i >> 16u) & 0x0000ffffu;
+  return i;
 }
 
+// Dimensions 2 and 3: the xor of the direction numbers v_k of the set bits k of i, with v_k
+// from Joe and Kuo's parameters (s, a, m_1..m_s) by the recurrence v_k = (a-weighted earlier
+// v) xor v_{k-s} xor (v_{k-s} >> s), mirrored (so >> becomes <<, and 1/2 becomes 1).
 // Dimension 2: s = 2, a = 1, m = 1, 3 (v_k = v_{k-1} xor v_{k-2} xor (v_{k-2} >> 2)).
-uint sobol_dimension2(uint i) {
+uint sobol_dimension2_mirrored(uint i) {
   uint result = 0u;
-  uint v0 = 0x80000000u, v1 = 0xc0000000u;
+  uint v0 = 1u, v1 = 3u;
   for (; i != 0u; i >>= 1u) {
-    result ^= v0 & (0u - (i & 1u));
-    uint next = v1 ^ v0 ^ (v0 >> 2u);
+    result ^= v0 & (0u - (i & 1u));  // v where bit k of i is set: no branch to mispredict
+    uint next = v1 ^ v0 ^ (v0 << 2u);
     v0 = v1;
     v1 = next;
   }
@@ -91,17 +100,28 @@ uint sobol_dimension2(uint i) {
 }
 
 // Dimension 3: s = 3, a = 1, m = 1, 3, 1 (v_k = v_{k-2} xor v_{k-3} xor (v_{k-3} >> 3)).
-uint sobol_dimension3(uint i) {
+uint sobol_dimension3_mirrored(uint i) {
   uint result = 0u;
-  uint v0 = 0x80000000u, v1 = 0xc0000000u, v2 = 0x20000000u;
+  uint v0 = 1u, v1 = 3u, v2 = 4u;
   for (; i != 0u; i >>= 1u) {
     result ^= v0 & (0u - (i & 1u));
-    uint next = v1 ^ v0 ^ (v0 >> 3u);
+    uint next = v1 ^ v0 ^ (v0 << 3u);
     v0 = v1;
     v1 = v2;
     v2 = next;
   }
   return result;
+}
+
+// Dimensions 1 to 3 of point i as 32-bit fractions.
+uint sobol_dimension1(uint i) {
+  return bitfieldReverse(sobol_dimension1_mirrored(i));
+}
+uint sobol_dimension2(uint i) {
+  return bitfieldReverse(sobol_dimension2_mirrored(i));
+}
+uint sobol_dimension3(uint i) {
+  return bitfieldReverse(sobol_dimension3_mirrored(i));
 }
 
 // The largest float below 1 (1 - 2^-24): where a number in [0, 1) is clamped after arithmetic.
@@ -133,10 +153,14 @@ uvec2 sobol_slot_point(uint pixel_key, uint slot, uint sample_index) {
   uint i = shuffle_index(sample_index, block_seed);
   uint seed_x = pcg_hash(block_seed ^ (((slot & 1u) + 1u) * 0x85ebca6bu));
   uint seed_y = pcg_hash(seed_x);
+  // owen_scramble(sobol_dimensionN(i), seed) = bitfieldReverse(owen_permute_low_first(
+  // sobol_dimensionN_mirrored(i), seed)): the mirrorings in between cancel.
   if ((slot & 1u) == 0u) {
-    return uvec2(bitfieldReverse(owen_permute_low_first(i, seed_x)), owen_scramble(sobol_dimension1(i), seed_y));
+    return uvec2(bitfieldReverse(owen_permute_low_first(i, seed_x)),
+                 bitfieldReverse(owen_permute_low_first(sobol_dimension1_mirrored(i), seed_y)));
   }
-  return uvec2(owen_scramble(sobol_dimension2(i), seed_x), owen_scramble(sobol_dimension3(i), seed_y));
+  return uvec2(bitfieldReverse(owen_permute_low_first(sobol_dimension2_mirrored(i), seed_x)),
+               bitfieldReverse(owen_permute_low_first(sobol_dimension3_mirrored(i), seed_y)));
 }
 
 // Number `sample_index` of the 1-D set `slot` of the pixel keyed `pixel_key`: the van der
