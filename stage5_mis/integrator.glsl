@@ -26,6 +26,10 @@ vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path
   vec3 beta = vec3(1.0f);  // path throughput: the product of the bounces' weights
   bool specular = true;    // camera ray, or the last bounce was a delta (mirror, glass)
+  // The refractions' eta^2 along the path: beta * eta_scale is the throughput without the
+  // radiance scale 1 / eta^2 of entering glass, which leaving it undoes (pbrt-v4's etaScale).
+  // The roulette reads that, so that it does not end most paths inside a glass ball.
+  float eta_scale = 1.0f;
   // The vertex whose BSDF sample made `ray`: its point, its normal on the side the light
   // came from, and the pdf of that sample (solid angle), to weigh the emission it finds.
   vec3 from_p = vec3(0.0f);
@@ -57,7 +61,7 @@ vec3 Li(Ray ray) {
     // survive or end together, as their MIS weights assume. It costs the one ray a path
     // traces before it ends, and it pays (docs/results/stage5_notes.md has the numbers).
     if (depth > 0u) {
-      float survive = russian_roulette(beta, params.roulette);
+      float survive = russian_roulette(beta * eta_scale, params.roulette);
       if (survive == 0.0f) break;
       beta *= survive;
     }
@@ -72,6 +76,7 @@ vec3 Li(Ray ray) {
       DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, sample_1d());
       wi = bounce.wi;
       beta *= bounce.weight;
+      eta_scale *= bounce.eta2;
       specular = true;
     } else {
       // The light sample: direct light as in stage4, weighed against the BSDF sample that

@@ -164,11 +164,12 @@ float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
 struct DeltaBounce {
   vec3 wi;      // local direction
   vec3 weight;  // throughput factor
+  float eta2;   // eta^2 after a refraction, whose weight holds radiance's 1 / eta^2; else 1
 };
 
 // Mirror: reflection about the normal, weighted by Schlick's Fresnel with F0 = base colour.
 DeltaBounce sample_mirror(Material m, vec3 wo) {
-  return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), schlick_fresnel(m.base_color, wo.z));
+  return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), schlick_fresnel(m.base_color, wo.z), 1.0f);
 }
 
 // Glass: reflect with probability F, else refract (the weight F / F = 1 or
@@ -177,10 +178,10 @@ DeltaBounce sample_mirror(Material m, vec3 wo) {
 DeltaBounce sample_glass(Material m, vec3 wo, bool entering, float u) {
   float eta = entering ? m.ior : 1.0f / m.ior;
   float F = fresnel_dielectric(wo.z, eta);
-  if (u < F) return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), vec3(1.0f));
+  if (u < F) return DeltaBounce(vec3(-wo.x, -wo.y, wo.z), vec3(1.0f), 1.0f);
   float cos_t = sqrt(max(0.0f, cos2_transmitted(min(abs(wo.z), 1.0f), eta)));
   vec3 wi = vec3(-wo.x / eta, -wo.y / eta, -cos_t);
-  return DeltaBounce(wi, vec3(m.base_color) * (1.0f / (eta * eta)));
+  return DeltaBounce(wi, vec3(m.base_color) * (1.0f / (eta * eta)), eta * eta);
 }
 
 bool is_delta_lobe(uint lobe) {
