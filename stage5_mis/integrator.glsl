@@ -28,7 +28,7 @@ vec3 Li(Ray ray) {
   bool specular = true;    // camera ray, or the last bounce was a delta (mirror, glass)
   // The refractions' eta^2 along the path: beta * eta_scale is the throughput without the
   // radiance scale 1 / eta^2 of entering glass, which leaving it undoes (pbrt-v4's etaScale).
-  // The roulette reads that, so that it does not end most paths inside a glass ball.
+  // The roulette reads that (roulette_weight), so it does not end most paths inside glass.
   float eta_scale = 1.0f;
   // The vertex whose BSDF sample made `ray`: its point, its normal on the side the light
   // came from, and the pdf of that sample (solid angle), to weigh the emission it finds.
@@ -61,7 +61,7 @@ vec3 Li(Ray ray) {
     // survive or end together, as their MIS weights assume. It costs the one ray a path
     // traces before it ends, and it pays (docs/results/stage5_notes.md has the numbers).
     if (depth > 0u) {
-      float survive = russian_roulette(beta * eta_scale, params.roulette);
+      float survive = russian_roulette(roulette_weight(beta, eta_scale), params.roulette);
       if (survive == 0.0f) break;
       beta *= survive;
     }
