@@ -13,6 +13,7 @@
 #include "common/scene/bvh.h"
 #include "common/scene/scene.h"
 #include "cpu/cpu_variants.h"
+#include "cpu/sphere_soa.h"
 #include "cpu/triangle_soa.h"
 #include "cpu/wide_bvh.h"
 
@@ -42,6 +43,10 @@ class CpuBackend : public Backend {
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data(),
                          soa_->data.data(), soa_->stride};
+    sphere_soa_ = std::make_unique<SphereSoa>(scene.spheres);
+    scene_.sphere_soa = sphere_soa_->data.data();
+    scene_.sphere_soa_stride = sphere_soa_->stride;
+    scene_.sphere_soa_count = sphere_soa_->count;
     // Textures and vertex colours; without them, neutral material entries for a copy of
     // the kernel that has texture code (texture.glsl reads nothing more then).
     if (uses_textures(scene)) {
@@ -91,6 +96,7 @@ class CpuBackend : public Backend {
   unsigned threads_;
   KernelScene scene_{};
   std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test
+  std::unique_ptr<SphereSoa> sphere_soa_;  // the spheres as arrays for theirs
   std::unique_ptr<WideBvh> wide_;     // the BVH collapsed for the SIMD walk, or none
   std::vector<MaterialTextures> neutral_;  // material_textures[] of a scene without textures
 };

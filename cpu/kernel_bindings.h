@@ -19,6 +19,11 @@ inline thread_local uvec4 sampler_state = uvec4(0u);  // the sampler's (common/k
 // triangle_soa.h): nullptr means the plain loop over triangles[].
 inline const float* triangle_soa = nullptr;
 inline uint triangle_soa_stride = 0u;  // floats per array (the padded triangle count)
+// The spheres as arrays for the SIMD test (sphere_lanes.h, sphere_soa.h): nullptr means the
+// plain loop over spheres[].
+inline const float* sphere_soa = nullptr;
+inline uint sphere_soa_stride = 0u;  // floats per array (the padded sphere count)
+inline uint sphere_soa_count = 0u;   // the spheres
 // The BVH over the triangles (common/scene/bvh.h, walked by common/kernel/bvh.glsl):
 // nullptr when the render has none (--accel none, or no triangles).
 inline const BvhNode* bvh_nodes = nullptr;

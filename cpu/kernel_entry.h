@@ -12,6 +12,9 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   lights = scene.lights;
   triangle_soa = scene.triangle_soa;
   triangle_soa_stride = scene.triangle_soa_stride;
+  sphere_soa = scene.sphere_soa;
+  sphere_soa_stride = scene.sphere_soa_stride;
+  sphere_soa_count = scene.sphere_soa_count;
   bvh_nodes = scene.bvh_nodes;
   bvh_indices = scene.bvh_indices;
   wide_bvh = scene.bvh_nodes != nullptr ? scene.wide_bvh : nullptr;  // the same tree, wide (wide_bvh.h)

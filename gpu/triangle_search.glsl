@@ -1,4 +1,5 @@
-// The GPU's search over the triangles (common/kernel/intersect.glsl declares it): through
+// The GPU's searches over the triangles and the spheres (common/kernel/intersect.glsl declares
+// them). The triangles: through
 // the BVH (common/kernel/bvh.glsl) when the pass asks for it, else the triangles in index
 // order, one hit_triangle() at a time, as the article's brute force. The same hits.
 #ifndef PT_GPU_TRIANGLE_SEARCH_GLSL
@@ -15,6 +16,11 @@ Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
 bool occluded_triangles(Ray ray, RayShear rs, float t_max) {
   if (params.accel == kAccelBvh) return occluded_bvh(ray, rs, t_max);
   return nearest_triangle_in_order(ray, rs, Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone)).kind != kPrimNone;
+}
+
+// The GPU's search over the spheres (intersect.glsl declares it): the loop in index order.
+Hit nearest_sphere(Ray ray, Hit best) {
+  return nearest_sphere_in_order(ray, best);
 }
 
 #endif  // PT_GPU_TRIANGLE_SEARCH_GLSL

@@ -187,6 +187,17 @@ Hit hit_sphere(Ray ray, uint index, Hit best) {
   return Hit(t, 0.0f, 0.0f, index, kPrimSphere);
 }
 
+// The nearest hit of `best` and every sphere, tested in index order.
+Hit nearest_sphere_in_order(Ray ray, Hit best) {
+  for (uint i = 0u; i < params.sphere_count; i++) best = hit_sphere(ray, i, best);
+  return best;
+}
+
+// The nearest hit of `best` and every sphere, as the backend searches them: the loop above
+// on the GPU (gpu/triangle_search.glsl), SIMD lanes on the CPU (cpu/sphere_lanes.h), with
+// the same hits bit for bit. Defined by the backend after this file.
+Hit nearest_sphere(Ray ray, Hit best);
+
 // The nearest hit closer than t_max, or a hit of kind kPrimNone, every surface opaque.
 Hit intersect_opaque(Ray ray, float t_max) {
   Hit best = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
@@ -195,9 +206,7 @@ Hit intersect_opaque(Ray ray, float t_max) {
   if (has_feature(kFeatureTriangles) && params.triangle_count > 0u) {
     best = nearest_triangle(ray, make_ray_shear(ray.dir), best);
   }
-  if (has_feature(kFeatureSpheres)) {
-    for (uint i = 0u; i < params.sphere_count; i++) best = hit_sphere(ray, i, best);
-  }
+  if (has_feature(kFeatureSpheres)) best = nearest_sphere(ray, best);
   return best;
 }
 
@@ -286,13 +295,7 @@ bool occluded_scene(Ray ray, float t_max) {
       occluded_triangles(ray, make_ray_shear(ray.dir), t_max)) {
     return true;
   }
-  if (has_feature(kFeatureSpheres)) {
-    Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
-    for (uint i = 0u; i < params.sphere_count; i++) {
-      if (hit_sphere(ray, i, none).kind != kPrimNone) return true;
-    }
-  }
-  return false;
+  return has_feature(kFeatureSpheres) && nearest_sphere(ray, Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone)).kind != kPrimNone;
 }
 
 #endif  // PT_INTERSECT_GLSL

@@ -28,6 +28,9 @@ struct KernelScene {
   const Light* lights;
   const float* triangle_soa = nullptr;  // the triangles as arrays (triangle_soa.h), or nullptr
   uint triangle_soa_stride = 0;
+  const float* sphere_soa = nullptr;  // the spheres as arrays (cpu/sphere_soa.h), or nullptr
+  uint sphere_soa_stride = 0;
+  uint sphere_soa_count = 0;
   const BvhNode* bvh_nodes = nullptr;  // the BVH (common/scene/bvh.h), or nullptr
   const uint* bvh_indices = nullptr;
   const WideBvh* wide_bvh = nullptr;   // the same tree for the CPU's SIMD walk, or nullptr

@@ -60,6 +60,7 @@ PT_DOUBLE_PRELUDE
 // The shared shader files again, for the second namespace.
 #undef PT_CPU_KERNEL_BINDINGS_H
 #undef PT_CPU_TRIANGLE_LANES_H
+#undef PT_CPU_SPHERE_LANES_H
 #undef PT_KERNEL_DEFINITIONS_GLSL
 #undef PT_UNIFORM_HEMISPHERE_GLSL
 #undef PT_COSINE_HEMISPHERE_GLSL
