@@ -6,10 +6,9 @@ The yardstick is build/bin/pt_smallpt_reference (bench/smallpt_reference.cpp): s
 hits, no per-subpixel clamp) in double precision with 2 threads. It runs twice:
 
   reference            smallpt's scene: its black front wall, camera rays starting 140 units ahead
-  reference (open)     builtin:smallpt's geometry: no front wall, rays from the camera (--open-front --start 0)
 
 against build/bin/stage3_importance, stage4_direct_indirect and stage5_mis on builtin:smallpt
-(--backend cpu --threads 2), each with --sampler sobol (the default) and --sampler independent.
+(--backend cpu --threads 2), the same scene (its front wall, the camera's clip start of 140), each with --sampler sobol (the default) and --sampler independent.
 At --width x --height (64x48): each renderer's own reference of --ref-spp (16384) samples, cached in
 --cache-dir under the binary's hash, then --seeds (4) renders of --spp (256) samples per renderer,
 interleaved (every renderer for seed 1, then for seed 2, ...) so that a change in the machine's load
@@ -110,8 +109,6 @@ def main():
     renderers = [
         Renderer("smallpt", "reference (smallpt's scene: front wall, rays start 140 ahead)", "reference",
                  ref_bin, ref_hash, [], False, ""),
-        Renderer("smallpt_open", "reference (builtin:smallpt's geometry: --open-front --start 0)",
-                 "reference, open", ref_bin, ref_hash, ["--open-front", "--start", "0"], False, ""),
     ]
     for st in stages:
         path, h = bins[st]

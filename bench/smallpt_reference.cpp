@@ -22,16 +22,17 @@
 // Fresnel (smallpt: Schlick's), its reflection is untinted and its transmission tinted
 // 0.999 (smallpt tints both). The 1/eta^2 radiance scale of our glass is left out: every
 // path that reaches the light leaves the ball as often as it enters it, so it cancels.
-// The one documented difference of scene: smallpt has a black front wall at z = 170 behind
-// the rays' start and builtin:smallpt leaves it out; this program has it by default
-// (smallpt's scene) and drops it with --open-front. smallpt's 140-unit start also puts the
-// top 0.5% of the image's rays above the ceiling, where they see the light sphere from
-// outside (a bright top row); `--open-front --start 0` is builtin:smallpt's geometry (in double).
+// builtin:smallpt is smallpt's scene: the black front wall at z = 170 and the camera's clip
+// start of 140 (its rays start on that plane, common/kernel/camera.glsl); this program has
+// both by default and drops them with --open-front and --start 0 (the open box that
+// builtin:smallpt was until the camera had a clip start). smallpt's 140-unit start also
+// puts the top 0.5% of the image's rays above the ceiling, where they see the light sphere
+// from outside (a bright top row), in both.
 // A surface of albedo 0 (the light, the front wall) ends the path after its emission: all
 // that could follow is multiplied by 0 (smallpt would trace on until its roulette).
 //
 //   pt_smallpt_reference --width 64 --height 48 --spp 256 --seed 1 --out out/ref.exr
-//   pt_smallpt_reference --open-front --start 0 ...      # builtin:smallpt's geometry
+//   pt_smallpt_reference --open-front --start 0 ...      # the open box, rays from the eye
 //
 // It writes a linear float RGB .exr, row 0 on top (as the stages' .exr), and prints one
 // line with its CPU time (user + sys of the whole process, getrusage) and wall time.
@@ -85,9 +86,9 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "random seed");
   app.add_option("--threads", threads, "threads")->check(CLI::Range(1u, 1024u));
   app.add_option("--out", out, "output image (.exr: linear float RGB)");
-  app.add_flag("--open-front", open_front, "leave smallpt's black front wall out, as builtin:smallpt does");
+  app.add_flag("--open-front", open_front, "leave smallpt's black front wall out (an open box)");
   app.add_option("--start", start, "camera rays start this far ahead (times their unnormalised direction); "
-                 "smallpt: 140, builtin:smallpt: 0")->check(CLI::Range(0.0, 1e4));
+                 "smallpt and builtin:smallpt: 140")->check(CLI::Range(0.0, 1e4));
   CLI11_PARSE(app, argc, argv);
 
   Scene scene = smallpt_scene(width, height, !open_front);

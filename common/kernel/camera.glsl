@@ -16,10 +16,12 @@ Ray camera_ray(Camera cam, vec2 film) {
   vec3 forward = cam.forward;
   vec3 right = vec3(cam.right) * (sx * cam.extent_x);
   vec3 up = vec3(cam.up) * (sy * cam.extent_y);
+  // A clip start moves the ray's start to the plane that far along forward (0: the eye).
   if (cam.kind == kCameraOrthographic) {
-    return Ray(vec3(cam.origin) + right + up, forward);
+    return Ray(vec3(cam.origin) + right + up + forward * float(cam.clip_start), forward);
   }
-  return Ray(cam.origin, normalize(forward + right + up));
+  vec3 dir = normalize(forward + right + up);
+  return Ray(vec3(cam.origin) + dir * (float(cam.clip_start) / dot(dir, forward)), dir);
 }
 
 #endif  // PT_CAMERA_GLSL

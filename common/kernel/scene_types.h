@@ -162,7 +162,8 @@ struct Camera {
   vec3 right;      // unit image +x
   float extent_y;  // perspective: tan(yfov/2); orthographic: ymag (half-extent)
   vec3 up;         // unit image +y
-  float pad;       // unused
+  float clip_start;  // rays start on the plane this far along forward (Cycles' clip start,
+                     // smallpt's 140); 0 for glTF cameras (znear is not read)
 };
 
 // Everything a pass needs besides the arrays: one uniform block on the GPU.

@@ -110,9 +110,8 @@ Scene every_feature() {
 // Kevin Beason's smallpt (2008), rebuilt from its published numbers: the walls are spheres
 // of radius 1e5 (a test of ray/sphere precision in float, intersect.glsl), a mirror and a
 // glass ball, and the light a sphere of radius 600 whose cap pokes 0.27 below the ceiling.
-// smallpt starts its camera rays 140 units ahead, past its black front wall; here the
-// front wall is left out instead (black, it only absorbed), so light leaving the box
-// through the open front can come back off the walls' far parts: a slightly brighter box.
+// Its camera stands outside the room, behind the black front wall at z = 170, and starts
+// its rays 140 units ahead, on a plane inside the room: the camera's clip start.
 Scene smallpt() {
   Scene s;
   auto wall = [&](glm::vec3 c, glm::vec3 albedo) { s.add_sphere(c, 1e5f, s.add_material(make_diffuse(albedo))); };
@@ -121,6 +120,7 @@ Scene smallpt() {
   wall({50.0f, 40.8f, 1e5f}, glm::vec3(0.75f));               // back
   wall({50.0f, 1e5f, 81.6f}, glm::vec3(0.75f));               // bottom
   wall({50.0f, -1e5f + 81.6f, 81.6f}, glm::vec3(0.75f));      // top
+  wall({50.0f, 40.8f, -1e5f + 170.0f}, glm::vec3(0.0f));      // front, behind the camera's clip start
   s.add_sphere({27.0f, 16.5f, 47.0f}, 16.5f, s.add_material(make_metal(glm::vec3(0.999f), 0.0f)));  // mirror
   s.add_sphere({73.0f, 16.5f, 78.0f}, 16.5f, s.add_material(make_glass(glm::vec3(0.999f), 1.5f)));  // glass
   s.add_sphere({50.0f, 681.6f - 0.27f, 81.6f}, 600.0f, s.add_material(make_diffuse(glm::vec3(0.0f), glm::vec3(12.0f))));
@@ -130,6 +130,7 @@ Scene smallpt() {
   cam.yfov = 2.0f * std::atan(0.5f * 0.5135f);
   cam.to_world = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(50.0f, 52.0f, 295.6f)),
                              -std::atan(0.042612f), glm::vec3(1.0f, 0.0f, 0.0f));
+  cam.clip_start = 140.0f;
   s.camera = cam;
   // The room, for the spawn offset's scale: the walls' spheres reach 2e5 away.
   Bounds room;

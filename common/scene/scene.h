@@ -20,6 +20,8 @@ struct CameraDesc {
   float yfov = 0.6911f;            // perspective: vertical field of view, radians
   float xmag = 1.0f, ymag = 1.0f;  // orthographic: half-extents of the view
   float aspect_ratio = 0.0f;       // perspective: the file's aspectRatio (width / height), 0 when not given
+  float clip_start = 0.0f;         // nothing nearer than this along the view axis is seen (builtin
+                                   // scenes only: glTF's znear is not read)
 };
 
 // One of a glTF file's cameras as the default scene places it (--camera N|NAME picks one).

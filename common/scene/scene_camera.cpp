@@ -105,6 +105,7 @@ Camera make_camera(const Scene& scene, float aspect) {
     c.extent_x = t * aspect, c.extent_y = t;
   }
   c.kind = desc.kind;
+  c.clip_start = desc.clip_start;
   return c;
 }
 
