@@ -113,15 +113,43 @@ uint sobol_dimension3_mirrored(uint i) {
   return result;
 }
 
+// Dimensions 2 and 3 of point i together, mirrored (x: dimension 2, y: dimension 3), the
+// way the sampler takes them. Below 2^16, where every shuffled index of the first 65,536
+// samples lies (shuffle_index), the sums above need only v_0 .. v_15, which have at most
+// 16 bits: one word holds both dimensions' v_k (dimension 2 in its low half, 3 in its high
+// half, the constants below, from the recurrences above), and each bit of i costs one mask
+// and one xor for the two, with no recurrence to run. Larger i take the loops.
+uvec2 sobol_dimensions23_mirrored(uint i) {
+  if (i > 0xffffu) return uvec2(sobol_dimension2_mirrored(i), sobol_dimension3_mirrored(i));
+  uint r = 0u;
+  r ^= 0x00010001u & (0u - (i & 1u));
+  r ^= 0x00030003u & (0u - ((i >> 1u) & 1u));
+  r ^= 0x00040006u & (0u - ((i >> 2u) & 1u));
+  r ^= 0x000a0009u & (0u - ((i >> 3u) & 1u));
+  r ^= 0x001f0017u & (0u - ((i >> 4u) & 1u));
+  r ^= 0x002e003au & (0u - ((i >> 5u) & 1u));
+  r ^= 0x00450071u & (0u - ((i >> 6u) & 1u));
+  r ^= 0x00c900a3u & (0u - ((i >> 7u) & 1u));
+  r ^= 0x011b0116u & (0u - ((i >> 8u) & 1u));
+  r ^= 0x02a40339u & (0u - ((i >> 9u) & 1u));
+  r ^= 0x079a0677u & (0u - ((i >> 10u) & 1u));
+  r ^= 0x0b6709aau & (0u - ((i >> 11u) & 1u));
+  r ^= 0x101e1601u & (0u - ((i >> 12u) & 1u));
+  r ^= 0x302d3903u & (0u - ((i >> 13u) & 1u));
+  r ^= 0x40417706u & (0u - ((i >> 14u) & 1u));
+  r ^= 0xa0c3aa09u & (0u - ((i >> 15u) & 1u));
+  return uvec2(r & 0xffffu, r >> 16u);
+}
+
 // Dimensions 1 to 3 of point i as 32-bit fractions.
 uint sobol_dimension1(uint i) {
   return bitfieldReverse(sobol_dimension1_mirrored(i));
 }
 uint sobol_dimension2(uint i) {
-  return bitfieldReverse(sobol_dimension2_mirrored(i));
+  return bitfieldReverse(sobol_dimensions23_mirrored(i).x);
 }
 uint sobol_dimension3(uint i) {
-  return bitfieldReverse(sobol_dimension3_mirrored(i));
+  return bitfieldReverse(sobol_dimensions23_mirrored(i).y);
 }
 
 // The largest float below 1 (1 - 2^-24): where a number in [0, 1) is clamped after arithmetic.
@@ -159,8 +187,9 @@ uvec2 sobol_slot_point(uint pixel_key, uint slot, uint sample_index) {
     return uvec2(bitfieldReverse(owen_permute_low_first(i, seed_x)),
                  bitfieldReverse(owen_permute_low_first(sobol_dimension1_mirrored(i), seed_y)));
   }
-  return uvec2(bitfieldReverse(owen_permute_low_first(sobol_dimension2_mirrored(i), seed_x)),
-               bitfieldReverse(owen_permute_low_first(sobol_dimension3_mirrored(i), seed_y)));
+  uvec2 d = sobol_dimensions23_mirrored(i);
+  return uvec2(bitfieldReverse(owen_permute_low_first(d.x, seed_x)),
+               bitfieldReverse(owen_permute_low_first(d.y, seed_y)));
 }
 
 // Number `sample_index` of the 1-D set `slot` of the pixel keyed `pixel_key`: the van der

@@ -63,7 +63,9 @@ TEST_CASE("sampler: the unscrambled Sobol points are the published ones", "[samp
     CHECK(double(kernel::sobol_dimension3(g)) / 4294967296.0 == dim4[n]);
   }
   // Every point, from Joe and Kuo's parameters by the general recurrence; dimension 1 is
-  // the identity matrix (s = 0 in their table: the van der Corput sequence).
+  // the identity matrix (s = 0 in their table: the van der Corput sequence). Dimensions 2
+  // and 3 come from the packed word of sobol_dimensions23_mirrored below 2^16 and from the
+  // loops above it: the loop over i below checks the first, the four large i the second.
   // Their rows: d = 2: s = 1, a = 0, m = 1; d = 3: s = 2, a = 1, m = 1 3; d = 4: s = 3, a = 1, m = 1 3 1.
   std::vector<uint> v = joe_kuo_directions(1, 0u, {1u});
   std::vector<uint> v3 = joe_kuo_directions(2, 1u, {1u, 3u});
