@@ -12,7 +12,10 @@ sampler_notes.md (bench/sampler_study.py), cycles_notes.md (bench/cycles/compare
 smallpt_notes.md (bench/smallpt_compare.py) and stage_chapters_notes.md (the index of the
 stage chapters' measurements, docs/results/stageN_notes.md), kept
 between runs. Every table comes from the CSV files in the folder, so a run of one section
-(pt_bench --section accel) keeps the others' tables as their last full run left them."""
+(pt_bench --section accel) keeps the others' tables as their last full run left them. When
+the error section was re-run alone, docs/results/error_run.txt says so in one line that starts
+with its date (the command, its load and time after it): the header quotes it and the error
+tables carry that date."""
 import argparse
 import csv
 import datetime
@@ -139,6 +142,8 @@ def main():
     model, cores = machine()
     gpu_devices = sorted({r["device"] for r in conv + speed if r.get("backend") == "gpu"})
 
+    error_run = small_file(a.results, "error_run.txt") if os.path.exists(os.path.join(a.results, "error_run.txt")) else ""
+    bench_date = small_file(a.results, "bench_date.txt")
     md = ["# Results: speed against accuracy", "",
           "Made by `%s` (bench/run.sh: `build/bin/pt_bench`, then `bench/report.py`) on %s." %
           (a.command, small_file(a.results, "bench_date.txt") if os.path.exists(
@@ -158,6 +163,9 @@ def main():
           "- References: the closed form for the analytic scenes (furnace, floors under square lights: "
           "Lambert's polygon formula), else a stage4 CPU render cached under a key of scene, size and "
           "kernel; its own estimated relative error is listed and bounds what can be measured.", ""]
+    if error_run:
+        md[-1:-1] = ["- The error study (convergence.csv, and every table and plot made from it) is of a later "
+                     "run than the rest: %s." % error_run]
 
     notes = os.path.join(a.results, "notes.md")
     if os.path.exists(notes):
@@ -183,7 +191,7 @@ def main():
                     rows[-1]["spp"], float(rows[-1]["rel_rmse"]), samples_per_s(rows), s[0], s[1]))
             md.append("")
 
-        md += error_targets_section(runs, small_file(a.results, "bench_date.txt"))
+        md += error_targets_section(runs, error_run.split()[0] if error_run else bench_date)
 
         md += ["## Efficiency ratios and CPU against GPU", "",
                "Efficiency 1/(MSE x time) at each run's last checkpoint; a ratio above 1 means the later "
