@@ -143,11 +143,11 @@ def main():
     gpu_devices = sorted({r["device"] for r in conv + speed if r.get("backend") == "gpu"})
 
     error_run = small_file(a.results, "error_run.txt") if os.path.exists(os.path.join(a.results, "error_run.txt")) else ""
-    bench_date = small_file(a.results, "bench_date.txt")
+    bench_date = small_file(a.results, "bench_date.txt") if os.path.exists(
+        os.path.join(a.results, "bench_date.txt")) else datetime.date.today().isoformat()
     md = ["# Results: speed against accuracy", "",
           "Made by `%s` (bench/run.sh: `build/bin/pt_bench`, then `bench/report.py`) on %s." %
-          (a.command, small_file(a.results, "bench_date.txt") if os.path.exists(
-              os.path.join(a.results, "bench_date.txt")) else datetime.date.today().isoformat()), "",
+          (a.command, bench_date), "",
           "- Machine: %s, %s cores; GPU backend: %s." % (model, cores, ", ".join(gpu_devices) or "none"),
           "- Load average (1, 5, 15 min) before the run: %s, after: %s; the run took %s s. A load above "
           "the core count means other jobs shared the cores: wall times are then longer than the "

@@ -3,12 +3,11 @@
 
 The yardstick is build/bin/pt_smallpt_reference (bench/smallpt_reference.cpp): smallpt's algorithm
 (cosine sampling, Russian roulette after 5 bounces with p = max albedo, glass split on the first two
-hits, no per-subpixel clamp) in double precision with 2 threads. It runs twice:
-
-  reference            smallpt's scene: its black front wall, camera rays starting 140 units ahead
-
-against build/bin/stage3_importance, stage4_direct_indirect and stage5_mis on builtin:smallpt
-(--backend cpu --threads 2), the same scene (its front wall, the camera's clip start of 140), each with --sampler sobol (the default) and --sampler independent.
+hits, no per-subpixel clamp) in double precision with 2 threads, on smallpt's scene (its black
+front wall, camera rays starting 140 units ahead), against build/bin/stage3_importance,
+stage4_direct_indirect and stage5_mis on builtin:smallpt, the same scene (the front wall and the
+camera's clip start of 140), --backend cpu --threads 2, each with --sampler sobol (the default)
+and --sampler independent.
 At --width x --height (64x48): each renderer's own reference of --ref-spp (16384) samples, cached in
 --cache-dir under the binary's hash, then --seeds (4) renders of --spp (256) samples per renderer,
 interleaved (every renderer for seed 1, then for seed 2, ...) so that a change in the machine's load

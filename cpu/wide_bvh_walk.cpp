@@ -38,9 +38,10 @@ template <int bytes> struct Walk {
   // box_slab.glsl's inverse_direction() for one axis, the same operations (glm's clamp:
   // max, then min, a NaN kept), written here so that it is inlined into the walk of each
   // instruction set. Called instead, the kernel's function (plain SSE code, built once)
-  // cost a third of the CPU time of every stage on the Cornell box, the price of leaving
-  // AVX code for SSE code per ray (docs/acceleration.md, "Measured"). Its clamp is lab 5's
-  // answer and is cut from the handout, as the slab test below is.
+  // cost a third of the CPU time of every stage on the Cornell box on an AVX-512 machine,
+  // most likely for going from AVX code to SSE code and back per ray (docs/acceleration.md,
+  // "Measured"). Its clamp is lab 5's answer and is cut from the handout, as the slab test
+  // below is.
   [[gnu::always_inline]] static float inverse_axis(float d) {
     float v = 1.0f / d;
     // [lab 5 answer]
