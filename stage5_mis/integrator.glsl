@@ -35,7 +35,12 @@ vec3 Li(Ray ray) {
   vec3 from_p = vec3(0.0f);
   vec3 from_n = vec3(0.0f, 0.0f, 1.0f);
   float bsdf_pdf = 0.0f;
+  // Russian roulette's verdict on the path beyond `ray`'s hit: 1 / p to go on, 0 to end
+  // after the emission that `ray` finds (below: decided before the ray is traced).
+  float survive = 1.0f;
   for (uint depth = 0u;; depth++) {
+    // A path that the roulette has ended traces its last ray only if it might find emission.
+    if (survive == 0.0f && !may_find_emission(ray)) break;
     Hit hit = intersect_scene(ray, kInfinity);
     if (hit.kind == kPrimNone) {
       // The sky: in full after a delta bounce, else weighed against sampling it as a light.
@@ -55,16 +60,8 @@ vec3 Li(Ray ray) {
     }
     // The depth cap ends the path after the emission its last ray found: a path of N
     // bounces gets its direct light from both strategies, as stage4's from its one.
-    if (at_depth_cap(depth)) break;
-    // Russian roulette decides here, after the emission this ray found, not before the ray
-    // was traced (stages 2-4): the two strategies' shares of one vertex's direct light then
-    // survive or end together, as their MIS weights assume. It costs the one ray a path
-    // traces before it ends, and it pays (docs/results/stage5_notes.md has the numbers).
-    if (depth > 0u) {
-      float survive = russian_roulette(roulette_weight(beta, eta_scale), params.roulette);
-      if (survive == 0.0f) break;
-      beta *= survive;
-    }
+    if (at_depth_cap(depth) || survive == 0.0f) break;
+    beta *= survive;  // the roulette's 1 / p, after the emission this ray found
 
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
     vec3 n = surface.front ? surface.n : -surface.n;
@@ -102,6 +99,15 @@ vec3 Li(Ray ray) {
     }
 
     ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+    // Russian roulette for the path beyond the new ray's hit. It applies after the emission
+    // that ray finds, not before the ray as in stages 2-4: the two strategies' shares of
+    // one vertex's direct light then survive or end together, as their MIS weights assume
+    // (docs/results/stage5_notes.md has the numbers). It is drawn here, before the ray is
+    // traced, with the number and the weight it would have at the next hit (nothing is
+    // drawn in between), so that a path it ends traces its last ray only where that ray
+    // may find emission (may_find_emission).
+    survive = 1.0f;  // at the depth cap the path ends before the roulette would draw
+    if (depth + 1u != params.depth_cap) survive = russian_roulette(roulette_weight(beta, eta_scale), params.roulette);
   }
   return L;
 }
