@@ -23,6 +23,10 @@ struct Config {
   std::string cache_dir = "build/bench_cache";
   std::string out_dir = "docs/results";
   std::uint32_t seed = 1;
+  // The error study's Russian roulette for every stage: kRouletteThroughput (--rr throughput,
+  // the default of stages 3 to 5; stage5 reads its square root), or kRouletteFixed, the
+  // article's p = 1/2 (stage2's default).
+  std::uint32_t roulette = kRouletteThroughput;
   // The acceleration section (issue 17, accel.cpp).
   int accel_size = 512;              // camera rays: accel_size x accel_size
   int accel_max_level = 8;           // the largest icosphere: 20 * 4^level triangles

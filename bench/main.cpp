@@ -83,6 +83,11 @@ int main(int argc, char** argv) {
     app.add_option("--cache", config.cache_dir, "directory of the cached references")->capture_default_str();
     app.add_option("--out", config.out_dir, "directory of the CSV files")->capture_default_str();
     app.add_option("--seed", config.seed, "seed of the study's renders")->capture_default_str();
+    std::string rr = "throughput";
+    app.add_option("--rr", rr,
+                   "the error study's Russian roulette, for every stage: throughput (the default of stages 3 to 5) or "
+                   "fixed (the article's p = 1/2, stage2's default)")
+        ->capture_default_str()->check(CLI::IsMember({"throughput", "fixed"}));
     app.add_option("--accel-size", config.accel_size, "accel: camera rays per side of the image")
         ->capture_default_str()->check(CLI::Range(1, 4096));
     app.add_option("--accel-max-level", config.accel_max_level, "accel: the largest icosphere, 20 * 4^level triangles")
@@ -101,6 +106,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "pt_bench: %s; see --help\n", e.what());
       return int(pt::kExitBadOption);
     }
+    config.roulette = rr == "fixed" ? pt::kRouletteFixed : pt::kRouletteThroughput;
     std::set<std::string> stage_set, backend_set(backends.begin(), backends.end());
     for (const std::string& s : stages) stage_set.insert(pt::bench::stage_name(s));
     for (const std::string& b : backends) {

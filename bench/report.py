@@ -123,6 +123,22 @@ def efficiency(rows):
 
 
 
+def roulette_sentence(conv):
+    """How the error study's renders end their paths (convergence.csv's roulette column,
+    absent before 2026-12-04, when every run used the article's p = 1/2)."""
+    kinds = sorted({r.get("roulette") or "fixed" for r in conv})
+    if kinds == ["throughput"]:
+        return ("Every stage runs with the throughput Russian roulette (`--rr throughput`: p = the path "
+                "weight's largest component; stage5 its square root, glass's 1 / eta^2 taken out), the default "
+                "of stages 3 to 5 (stage2's is the article's p = 1/2), so stages 2 to 4 differ only in how they "
+                "sample and stage5 has its own; before 2026-12-04 the study gave every stage the article's "
+                "p = 1/2 (`pt_bench --rr fixed`)")
+    if kinds == ["fixed"]:
+        return ("Every stage runs with the article's Russian roulette (p = 1/2, `--rr fixed`), so the stages "
+                "differ only in how they sample")
+    return "The runs mix Russian roulettes (%s: convergence.csv's roulette column)" % ", ".join(kinds)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--results", default="docs/results")
@@ -157,9 +173,8 @@ def main():
           "- Relative RMSE: OpenImageIO's `ImageBufAlgo::compare` RMSE over pixels and RGB channels, "
           "divided by the reference image's mean. Each checkpoint is a fresh render of 1, 2, 4, ... "
           "samples per pixel (the time a user waits for that image); efficiency is 1 / (MSE x time). "
-          "Every stage runs with the article's Russian roulette (p = 1/2, `--rr fixed`), so the stages "
-          "differ only in how they sample; images are %s pixels." %
-          (", ".join(sorted({"%sx%s" % (r["width"], r["height"]) for r in conv})) or "-"),
+          "%s; images are %s pixels." %
+          (roulette_sentence(conv), ", ".join(sorted({"%sx%s" % (r["width"], r["height"]) for r in conv})) or "-"),
           "- References: the closed form for the analytic scenes (furnace, floors under square lights: "
           "Lambert's polygon formula), else a stage4 CPU render cached under a key of scene, size and "
           "kernel; its own estimated relative error is listed and bounds what can be measured.", ""]
