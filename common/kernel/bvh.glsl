@@ -35,11 +35,14 @@ Hit hit_triangle_tie(Ray ray, RayShear rs, uint index, Hit best) {
   return found.prim == index && found.kind == kPrimTriangle ? found : best;
 }
 
-// The nearest hit of `best` and every triangle, found by walking the BVH: a leaf's
-// triangles by hit_triangle_tie(), an inner node's nearer child first, the farther one on
-// a stack of pending nodes with its entry distance (skipped when it is popped if a nearer
-// hit has been found since). No recursion: the stack is an array of kBvhStackSize, as
-// deep as the build lets the tree grow.
+// The nearest hit of `best` and every triangle, found by walking the BVH: an inner node's
+// nearer child first, the farther one on a stack of pending nodes with its entry distance
+// (skipped when it is popped if a nearer hit has been found since), a leaf's triangles by
+// hit_triangle_tie(). No recursion: the stack is an array of kBvhStackSize, as deep as the
+// build lets the tree grow. The walk descends inner nodes in a loop of its own until it
+// stands at a leaf, and only then tests triangles ("while-while", Aila and Laine 2009): a
+// GPU runs neighbouring rays in lockstep, and a leaf's test, the costly step, then runs for
+// all of them at once rather than again for each ray that reaches its leaf a step later.
 Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
   if (params.triangle_count == 0u) return best;
   vec3 inv_dir = inverse_direction(ray.dir);
@@ -48,12 +51,11 @@ Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
   float stack_t[kBvhStackSize];
   uint top = 0u;
   uint node = 0u;
-  while (true) {
-    BvhNode n = bvh_nodes[node];
-    bool descend = false;
-    if (n.count > 0u) {
-      for (uint i = 0u; i < n.count; i++) best = hit_triangle_tie(ray, rs, bvh_indices[n.first_or_left + i], best);
-    } else {
+  bool walking = true;  // `node` is the next node to visit
+  while (walking) {
+    BvhNode n = bvh_nodes[node];  // the node the walk stands at
+    // Inner nodes, down to a leaf.
+    while (n.count == 0u) {
       uint left = n.first_or_left;
       vec2 span_l = box_span(ray, inv_dir, bvh_nodes[left].lo, bvh_nodes[left].hi, best.t);
       vec2 span_r = box_span(ray, inv_dir, bvh_nodes[left + 1u].lo, bvh_nodes[left + 1u].hi, best.t);
@@ -65,21 +67,33 @@ Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
         stack_t[top] = left_first ? span_r.x : span_l.x;
         top++;
         node = left_first ? left : left + 1u;
-        descend = true;
       } else if (hit_l || hit_r) {
         node = hit_l ? left : left + 1u;
-        descend = true;
+      } else {
+        // Nothing below this node: the next pending node that a hit could still lie in.
+        walking = false;
+        while (top > 0u && !walking) {
+          top--;
+          if (stack_t[top] <= best.t) {
+            node = stack_node[top];
+            walking = true;
+          }
+        }
+        if (!walking) break;
       }
+      n = bvh_nodes[node];
     }
-    // Nothing below this node: the next pending node that a hit could still lie in.
-    while (!descend && top > 0u) {
+    if (!walking) break;
+    // A leaf: its triangles, then the next pending node that a hit could still lie in.
+    for (uint i = 0u; i < n.count; i++) best = hit_triangle_tie(ray, rs, bvh_indices[n.first_or_left + i], best);
+    walking = false;
+    while (top > 0u && !walking) {
       top--;
       if (stack_t[top] <= best.t) {
         node = stack_node[top];
-        descend = true;
+        walking = true;
       }
     }
-    if (!descend) break;
   }
   return best;
 }
