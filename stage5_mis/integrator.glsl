@@ -58,8 +58,9 @@ vec3 Li(Ray ray) {
       if (!specular) w = power_heuristic(bsdf_pdf, light_pdf(from_p, ray.dir, hit, length(surface.p - from_p)));
       L += beta * Le * w;
     }
-    // The depth cap ends the path after the emission its last ray found: a path of N
-    // bounces gets its direct light from both strategies, as stage4's from its one.
+    // The depth cap, or the roulette's verdict (drawn before this ray was traced, below),
+    // ends the path after the emission its last ray found: a path of N bounces gets its
+    // direct light from both strategies, as stage4's from its one.
     if (at_depth_cap(depth) || survive == 0.0f) break;
     beta *= survive;  // the roulette's 1 / p, after the emission this ray found
 
