@@ -70,7 +70,10 @@ Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
       } else if (hit_l || hit_r) {
         node = hit_l ? left : left + 1u;
       } else {
-        // Nothing below this node: the next pending node that a hit could still lie in.
+        // Nothing below this node: the next pending node that a hit could still lie in. The
+        // same pop as after a leaf, written here too so that a ray goes on down without
+        // waiting for its neighbours' descents to end (one pop after the loop for both
+        // cases measured 8% fewer camera rays/s on lavapipe: docs/acceleration.md).
         walking = false;
         while (top > 0u && !walking) {
           top--;
