@@ -41,7 +41,8 @@ void GpuBvhTracer::set_scene(const Scene& scene, const Bvh& bvh, const RaySet& r
   const std::size_t count = rays.size();
   m.ray_count = count;
   auto storage = [&](const void* data, std::size_t bytes) -> gpu::Buffer& {
-    m.buffers.emplace_back(m.context, std::max<std::size_t>(bytes, 64), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    m.buffers.emplace_back(m.context, std::max<std::size_t>((bytes + 15) / 16 * 16, 64),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     if (data && bytes) m.buffers.back().write(data, bytes);
     return m.buffers.back();
   };

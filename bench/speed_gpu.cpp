@@ -24,7 +24,8 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   std::vector<glm::vec4> rays(3 * count, glm::vec4(0.0f));
   for (std::size_t i = 0; i < count; i++) rays[3 * i] = glm::vec4(origins[i], 1.0f), rays[3 * i + 1] = glm::vec4(dirs[i], 0.0f);
   auto storage = [&](const void* data, std::size_t bytes) {
-    gpu::Buffer b(context, std::max<std::size_t>(bytes, 64), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    gpu::Buffer b(context, std::max<std::size_t>(bytes, 64),
+                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     if (data) b.write(data, bytes);
     return b;
   };

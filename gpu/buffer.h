@@ -18,6 +18,9 @@ class Buffer {
   Buffer& operator=(Buffer&& other) noexcept;
 
   VkBuffer handle() const { return buffer_; }
+  // The buffer seen as uvec4 texels (VK_FORMAT_R32G32B32A32_UINT), made when `usage` has
+  // VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, else VK_NULL_HANDLE.
+  VkBufferView texel_view() const { return view_; }
   VkDeviceSize size() const { return size_; }
   void* data() const { return mapped_; }
   // Copies bytes in (before a dispatch) or out (after it), flushing/invalidating as needed.
@@ -30,6 +33,7 @@ class Buffer {
   VkDevice device_ = VK_NULL_HANDLE;
   VkBuffer buffer_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkBufferView view_ = VK_NULL_HANDLE;
   VkDeviceSize size_ = 0;
   void* mapped_ = nullptr;
   bool coherent_ = true;

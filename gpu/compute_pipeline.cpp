@@ -7,6 +7,7 @@ namespace pt::gpu {
 
 namespace {
 VkDescriptorType binding_type(uint32_t binding) {
+  if (binding == kBvhNodesBinding) return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
   return binding == kParamsBinding || binding == kUniformTrianglesBinding ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
                                                                             : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
@@ -62,11 +63,12 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const u
     check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_),
           "compiling the kernel");
 
-    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 2},
-                                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}};
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 3},
+                                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+                                     {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.maxSets = 1;
-    pool_info.poolSizeCount = 2;
+    pool_info.poolSizeCount = 3;
     pool_info.pPoolSizes = sizes;
     check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_), "creating a descriptor pool");
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -95,6 +97,7 @@ void ComputePipeline::release() {
 void ComputePipeline::bind_buffers(const Buffer* const (&buffers)[kBindingCount]) {
   VkDescriptorBufferInfo infos[kBindingCount];
   VkWriteDescriptorSet writes[kBindingCount];
+  VkBufferView views[kBindingCount];
   for (uint32_t i = 0; i < kBindingCount; i++) {
     infos[i] = VkDescriptorBufferInfo{buffers[i]->handle(), 0, VK_WHOLE_SIZE};
     writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -102,7 +105,12 @@ void ComputePipeline::bind_buffers(const Buffer* const (&buffers)[kBindingCount]
     writes[i].dstBinding = i;
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = binding_type(i);
-    writes[i].pBufferInfo = &infos[i];
+    if (writes[i].descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+      views[i] = buffers[i]->texel_view();
+      writes[i].pTexelBufferView = &views[i];
+    } else {
+      writes[i].pBufferInfo = &infos[i];
+    }
   }
   vkUpdateDescriptorSets(device_, kBindingCount, writes, 0, nullptr);
 }

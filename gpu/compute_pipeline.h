@@ -1,8 +1,9 @@
 // A compute pipeline made from embedded SPIR-V, with the one descriptor set that
 // gpu/kernel_bindings.glsl declares: bindings 0-3 the scene arrays (storage), 4 the
 // per-pass parameters (uniform), 5 the pass output, 6 the event counters, 7 the light
-// table (storage), 8 the triangles again as a uniform buffer (used when they fit), 9 and
-// 10 the BVH's nodes and triangle indices (storage; common/scene/bvh.h), 11 to 14 the
+// table (storage), 8 the triangles again as a uniform buffer (used when they fit), 9 the
+// BVH's nodes (a uniform texel buffer of uvec4, Buffer::texel_view) and 10 its triangle
+// indices (storage; common/scene/bvh.h), 11 to 14 the
 // triangles' attributes, the materials' textures, the texture table and the texels
 // (storage; common/kernel/texture.glsl).
 #pragma once
@@ -18,6 +19,7 @@ namespace pt::gpu {
 constexpr uint32_t kBindingCount = 15;
 constexpr uint32_t kParamsBinding = 4;
 constexpr uint32_t kUniformTrianglesBinding = 8;
+constexpr uint32_t kBvhNodesBinding = 9;  // a uniform texel buffer
 
 // The buffer for binding 8 and the value of the kernel's constant kUniformTriangles: the
 // triangles copied into a uniform buffer if they fit (then `constant` is the capacity on

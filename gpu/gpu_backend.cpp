@@ -81,7 +81,7 @@ class GpuBackend : public Backend {
     // The BVH, or placeholders when the render searches every triangle (params.accel).
     const bool has_bvh = bvh && !bvh->nodes.empty();
     upload(bvh_nodes_, has_bvh ? bvh->nodes.data() : nullptr, has_bvh ? bvh->nodes.size() * sizeof(BvhNode) : 0,
-           "the BVH's nodes need");
+           "the BVH's nodes need", kTexels);
     upload(bvh_indices_, has_bvh ? bvh->indices.data() : nullptr, has_bvh ? bvh->indices.size() * sizeof(uint) : 0,
            "the BVH's triangle list needs");
     // Textures and vertex colours (common/kernel/texture.glsl), or placeholders without them.
@@ -181,10 +181,15 @@ class GpuBackend : public Backend {
   }
 
 
+  // The BVH's nodes, which the kernel reads as uvec4 texels (binding 9, gpu/kernel_bindings.glsl).
+  static constexpr VkBufferUsageFlags kTexels = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+
   // Storage buffers never have size 0: an empty array still gets a small buffer.
-  void upload(Buffer& buffer, const void* data, std::size_t bytes, const char* what = "the scene needs") {
+  void upload(Buffer& buffer, const void* data, std::size_t bytes, const char* what = "the scene needs",
+              VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
     check_range(bytes, what);
-    buffer = Buffer(context_, std::max<std::size_t>(bytes, 64), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) check_texels(bytes, what);
+    buffer = Buffer(context_, std::max<std::size_t>((bytes + 15) / 16 * 16, 64), usage);
     if (bytes) buffer.write(data, bytes);
   }
 
@@ -208,6 +213,17 @@ class GpuBackend : public Backend {
       throw Error(kExitNoDevice, std::string(what) + " " + megabytes(bytes) + " of memory but device '" +
                                      context_.device_name() + "' has " + megabytes(context_.heap_size()) +
                                      "; render a smaller image or scene, or use --backend cpu");
+    }
+  }
+
+  // The kernel reads the BVH's nodes as uvec4 texels (binding 9): a device allows at least
+  // 65,536 of them per buffer (lavapipe 2^27, as desktop GPUs do).
+  void check_texels(VkDeviceSize bytes, const char* what) const {
+    const VkDeviceSize texels = (bytes + 15) / 16, limit = context_.properties().limits.maxTexelBufferElements;
+    if (texels > limit) {
+      throw Error(kExitNoDevice, std::string(what) + " " + std::to_string(texels) + " texels of 16 bytes but device '" +
+                                     context_.device_name() + "' reads at most " + std::to_string(limit) +
+                                     " from one texel buffer; render a smaller scene, or use --backend cpu");
     }
   }
 

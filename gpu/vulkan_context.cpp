@@ -210,6 +210,7 @@ void VulkanContext::create(const std::string& device_request) {
     properties_.limits.maxStorageBufferRange = uint32_t(kFaultStorageBufferRange);
     heap_size_ = kFaultHeapSize;
   }
+  if (fault().small_texel_limit) properties_.limits.maxTexelBufferElements = kFaultTexelBufferElements;
 
   // [excerpt device_queue] (docs/vulkan_backend.md)
   // One queue family that can compute.

@@ -46,19 +46,22 @@ Hit hit_triangle_tie(Ray ray, RayShear rs, uint index, Hit best) {
 Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
   if (params.triangle_count == 0u) return best;
   vec3 inv_dir = inverse_direction(ray.dir);
-  if (!hit_box(ray, inv_dir, bvh_nodes[0].lo, bvh_nodes[0].hi, best.t)) return best;
+  if (!hit_box(ray, inv_dir, bvh_box_lo(0u), bvh_box_hi(0u), best.t)) return best;
   uint stack_node[kBvhStackSize];
   float stack_t[kBvhStackSize];
   uint top = 0u;
-  uint node = 0u;
-  bool walking = true;  // `node` is the next node to visit
+  BvhNode n = bvh_node_at(0u);  // the node the walk stands at
+  bool walking = true;
   while (walking) {
-    BvhNode n = bvh_nodes[node];  // the node the walk stands at
-    // Inner nodes, down to a leaf.
+    // Inner nodes, down to a leaf. The children's whole nodes are read, not just their boxes:
+    // the child the walk goes on to is then at hand (on the GPU a node is two texels whose
+    // fourth components hold first_or_left and count, so this costs no extra read).
     while (n.count == 0u) {
       uint left = n.first_or_left;
-      vec2 span_l = box_span(ray, inv_dir, bvh_nodes[left].lo, bvh_nodes[left].hi, best.t);
-      vec2 span_r = box_span(ray, inv_dir, bvh_nodes[left + 1u].lo, bvh_nodes[left + 1u].hi, best.t);
+      BvhNode child_l = bvh_node_at(left);
+      BvhNode child_r = bvh_node_at(left + 1u);
+      vec2 span_l = box_span(ray, inv_dir, child_l.lo, child_l.hi, best.t);
+      vec2 span_r = box_span(ray, inv_dir, child_r.lo, child_r.hi, best.t);
       bool hit_l = span_l.x <= span_l.y;
       bool hit_r = span_r.x <= span_r.y;
       if (hit_l && hit_r) {
@@ -66,9 +69,9 @@ Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
         stack_node[top] = left_first ? left + 1u : left;
         stack_t[top] = left_first ? span_r.x : span_l.x;
         top++;
-        node = left_first ? left : left + 1u;
+        n = left_first ? child_l : child_r;
       } else if (hit_l || hit_r) {
-        node = hit_l ? left : left + 1u;
+        n = hit_l ? child_l : child_r;
       } else {
         // Nothing below this node: the next pending node that a hit could still lie in. The
         // same pop as after a leaf, written here too so that a ray goes on down without
@@ -78,22 +81,21 @@ Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
         while (top > 0u && !walking) {
           top--;
           if (stack_t[top] <= best.t) {
-            node = stack_node[top];
+            n = bvh_node_at(stack_node[top]);
             walking = true;
           }
         }
         if (!walking) break;
       }
-      n = bvh_nodes[node];
     }
     if (!walking) break;
     // A leaf: its triangles, then the next pending node that a hit could still lie in.
-    for (uint i = 0u; i < n.count; i++) best = hit_triangle_tie(ray, rs, bvh_indices[n.first_or_left + i], best);
+    for (uint i = 0u; i < n.count; i++) best = hit_triangle_tie(ray, rs, bvh_index_at(n.first_or_left + i), best);
     walking = false;
     while (top > 0u && !walking) {
       top--;
       if (stack_t[top] <= best.t) {
-        node = stack_node[top];
+        n = bvh_node_at(stack_node[top]);
         walking = true;
       }
     }
@@ -111,24 +113,24 @@ bool occluded_bvh(Ray ray, RayShear rs, float t_max) {
   Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
   uint stack_node[kBvhStackSize];
   uint top = 0u;
-  if (hit_box(ray, inv_dir, bvh_nodes[0].lo, bvh_nodes[0].hi, t_max)) {
+  if (hit_box(ray, inv_dir, bvh_box_lo(0u), bvh_box_hi(0u), t_max)) {
     stack_node[0] = 0u;
     top = 1u;
   }
   while (top > 0u) {
     top--;
-    BvhNode n = bvh_nodes[stack_node[top]];
+    BvhNode n = bvh_node_at(stack_node[top]);
     if (n.count > 0u) {
       for (uint i = 0u; i < n.count; i++) {
-        if (hit_triangle(ray, rs, bvh_indices[n.first_or_left + i], none).kind != kPrimNone) return true;
+        if (hit_triangle(ray, rs, bvh_index_at(n.first_or_left + i), none).kind != kPrimNone) return true;
       }
     } else {
       uint left = n.first_or_left;
-      if (hit_box(ray, inv_dir, bvh_nodes[left].lo, bvh_nodes[left].hi, t_max)) {
+      if (hit_box(ray, inv_dir, bvh_box_lo(left), bvh_box_hi(left), t_max)) {
         stack_node[top] = left;
         top++;
       }
-      if (hit_box(ray, inv_dir, bvh_nodes[left + 1u].lo, bvh_nodes[left + 1u].hi, t_max)) {
+      if (hit_box(ray, inv_dir, bvh_box_lo(left + 1u), bvh_box_hi(left + 1u), t_max)) {
         stack_node[top] = left + 1u;
         top++;
       }

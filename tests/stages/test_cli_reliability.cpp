@@ -232,6 +232,26 @@ TEST_CASE("cli: a scene larger than the device's storage-buffer range is refused
   CHECK(!fs::exists(path("mesh.png")));
 }
 
+TEST_CASE("cli: a scene whose BVH has more nodes than the device reads from a texel buffer is refused with exit "
+          "4 and the numbers",
+          "[reliability][devices][bvh][large]") {
+  if (!have_vulkan_device()) SUCCEED("no Vulkan device here: nothing to test");
+  if (!have_vulkan_device()) return;
+  // builtin:furnace_mesh: 1,310,720 triangles, a BVH of 1,527,829 nodes of two 16-byte texels each
+  // (48.8 MB, within lavapipe's storage range); small_texel_limit allows 65536, the Vulkan minimum.
+  Run r = run("--backend gpu --scene builtin:furnace_mesh --width 4 --height 4 --out " + path("mesh.png"),
+              "PT_FAULT=small_texel_limit");
+  check_error(r, 4, "the BVH's nodes need ");
+  CHECK(r.err.find(" texels of 16 bytes but device") != std::string::npos);
+  CHECK(r.err.find("reads at most 65536 from one texel buffer") != std::string::npos);
+  CHECK(!fs::exists(path("mesh.png")));
+  // A scene within the limit renders on the device.
+  r = run("--backend gpu --scene builtin:cornell --width 8 --height 8 --out " + path("box.png"),
+          "PT_FAULT=small_texel_limit");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("backend gpu") != std::string::npos);
+}
+
 TEST_CASE("cli: a device lost mid-render is not retried: gpu writes the samples done and exits 4, auto finishes "
           "on the CPU",
           "[reliability][devices]") {
