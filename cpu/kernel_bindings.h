@@ -39,8 +39,6 @@ inline const uint* texels = nullptr;                             // 8-bit RGBA t
 inline Triangle triangle_at(uint i) { return triangles[i]; }
 // The BVH's nodes as bvh.glsl reads them (gpu/kernel_bindings.glsl reads them as texels).
 inline BvhNode bvh_node_at(uint i) { return bvh_nodes[i]; }
-inline vec3 bvh_box_lo(uint i) { return bvh_nodes[i].lo; }
-inline vec3 bvh_box_hi(uint i) { return bvh_nodes[i].hi; }
 inline uint bvh_index_at(uint i) { return bvh_indices[i]; }
 
 // The features this copy of the kernel is compiled for (cpu_variants.h): one copy per

@@ -27,8 +27,6 @@ BvhNode bvh_node_at(uint i) {
   uvec4 b = texelFetch(bvh_node_texels, int(2u * i + 1u));
   return BvhNode(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
 }
-vec3 bvh_box_lo(uint i) { return uintBitsToFloat(texelFetch(bvh_node_texels, int(2u * i)).xyz); }
-vec3 bvh_box_hi(uint i) { return uintBitsToFloat(texelFetch(bvh_node_texels, int(2u * i + 1u)).xyz); }
 uint bvh_index_at(uint i) { return bvh_indices[i]; }
 // Textures and vertex colours (common/kernel/texture.glsl); placeholders when the scene
 // has none (kFeatureTextures off).
