@@ -5,7 +5,7 @@
 //   PT_FAULT=no_device           the loader lists no device
 //   PT_FAULT=small_limits        the device allows 64 KiB storage buffers and a 1 MiB heap
 //   PT_FAULT=small_texel_limit   the device reads at most 65,536 texels from a texel buffer
-//                                (the Vulkan minimum; the BVH and triangles are read as texels)
+//                                (the Vulkan minimum; the BVH's nodes are read as texels)
 //   PT_FAULT=device_lost:pass=N  the Nth pass on the device (from 1) ends in VK_ERROR_DEVICE_LOST
 // Not part of the article: the machinery of the GPU backend.
 #pragma once
