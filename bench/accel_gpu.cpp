@@ -40,9 +40,9 @@ void GpuBvhTracer::set_scene(const Scene& scene, const Bvh& bvh, const RaySet& r
   m.uniform.reset();
   const std::size_t count = rays.size();
   m.ray_count = count;
-  auto storage = [&](const void* data, std::size_t bytes) -> gpu::Buffer& {
-    m.buffers.emplace_back(m.context, std::max<std::size_t>((bytes + 15) / 16 * 16, 64),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  auto storage = [&](const void* data, std::size_t bytes,
+                     VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) -> gpu::Buffer& {
+    m.buffers.emplace_back(m.context, std::max<std::size_t>(bytes, 64), usage);
     if (data && bytes) m.buffers.back().write(data, bytes);
     return m.buffers.back();
   };
@@ -54,7 +54,9 @@ void GpuBvhTracer::set_scene(const Scene& scene, const Bvh& bvh, const RaySet& r
   gpu::Buffer& triangles = storage(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
   gpu::Buffer& ray_buffer = storage(packed.data(), packed.size() * sizeof(glm::vec4));
   gpu::Buffer& output = storage(nullptr, count * sizeof(glm::vec4));
-  gpu::Buffer& nodes = storage(bvh.nodes.data(), bvh.nodes.size() * sizeof(BvhNode));
+  // The nodes as the kernel reads them: texels of a uniform texel buffer (binding 9).
+  gpu::Buffer& nodes = storage(bvh.nodes.data(), bvh.nodes.size() * sizeof(BvhNode),
+                               VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   gpu::Buffer& indices = storage(bvh.indices.data(), bvh.indices.size() * sizeof(uint));
   gpu::Buffer& unused = storage(nullptr, 64);
   m.output = &output;

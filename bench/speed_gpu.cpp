@@ -23,9 +23,8 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   // both kernels read them.
   std::vector<glm::vec4> rays(3 * count, glm::vec4(0.0f));
   for (std::size_t i = 0; i < count; i++) rays[3 * i] = glm::vec4(origins[i], 1.0f), rays[3 * i + 1] = glm::vec4(dirs[i], 0.0f);
-  auto storage = [&](const void* data, std::size_t bytes) {
-    gpu::Buffer b(context, std::max<std::size_t>(bytes, 64),
-                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  auto storage = [&](const void* data, std::size_t bytes, VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+    gpu::Buffer b(context, std::max<std::size_t>(bytes, 64), usage);
     if (data) b.write(data, bytes);
     return b;
   };
@@ -33,7 +32,9 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   gpu::Buffer ray_buffer = storage(rays.data(), rays.size() * sizeof(glm::vec4));
   gpu::Buffer naive_out = storage(nullptr, count * sizeof(float));
   gpu::Buffer renderer_out = storage(nullptr, count * sizeof(glm::vec4));
-  gpu::Buffer unused = storage(nullptr, 64);
+  // A placeholder for every binding the kernels do not read; binding 9 (the BVH's nodes) is a
+  // uniform texel buffer, so it has a texel view too.
+  gpu::Buffer unused = storage(nullptr, 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   gpu::Buffer unused_uniform(context, 64, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   // The triangles again as a uniform buffer if they fit, as gpu_backend.cpp binds them.
   gpu::UniformTriangles uniform = gpu::uniform_triangles(context, scene.triangles);
