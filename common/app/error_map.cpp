@@ -32,7 +32,8 @@ std::vector<float> relative_error_values(const Film& film) {
 }
 
 double error_map_white(const Film& film, double target_error) {
-  double e = target_error > 0.0 ? target_error : film.per_pixel_relative_error();
+  // The map's values are the pixels' sample-variance errors: white at twice their RMS.
+  double e = target_error > 0.0 ? target_error : film.sample_variance_relative_error();
   return e > 0.0 && std::isfinite(e) ? 2.0 * e : 1.0;
 }
 

@@ -21,8 +21,10 @@ OutputFile error_map_file(const std::string& path);
 // 2 spp or a black image).
 std::vector<float> relative_error_values(const Film& film);
 
-// The PNG's white: 2 x the target error when one is given, else 2 x the per-pixel relative
-// error (the average noise is then mid-grey), 1 when that is 0 or not finite.
+// The PNG's white: 2 x the target error when one is given, else 2 x the RMS of the values
+// above (Film::sample_variance_relative_error: the average noise is then mid-grey), 1 when
+// that is 0 or not finite. Under randomised QMC the values, like that RMS, are upper bounds
+// of the pixels' errors (docs/sampling.md).
 double error_map_white(const Film& film, double target_error);
 
 // Writes the map of `film` to `file` (the image's metadata: stage, scene, spp, seed).

@@ -192,8 +192,13 @@ FilmPart merge_film_parts(std::vector<FilmPart> parts, std::vector<std::string>&
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return parts[a].ranges.front().first < parts[b].ranges.front().first;
   });
+  // Under the default sampler, parts that follow one another without a gap keep the two
+  // halves of an aligned block known, for the per-pixel error (film.h, track_halves).
+  bool follow = merged.size() == 1 && ref.id.options.find("sampler sobol") != std::string::npos;
+  for (const FilmPart& p : parts) follow = follow && p.ranges.size() == 1;
   FilmPart out = parts[order[0]];
-  for (std::size_t k = 1; k < order.size(); k++) out.film.merge(parts[order[k]].film);
+  if (follow) out.film.track_halves(out.ranges.front().first);
+  for (std::size_t k = 1; k < order.size(); k++) out.film.merge(parts[order[k]].film, follow);
   out.ranges = merged;
   out.path.clear();
   return out;

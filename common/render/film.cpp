@@ -19,17 +19,55 @@ void Film::add_pass(std::span<const glm::vec4> pass, std::uint64_t samples) {
     sums_[4 * i + 3] += norm * norm;
   }
   spp_ += samples;
+  keep_half();
+}
+
+void Film::keep_half() {
+  // A power of two n whose block [first, first + 2n) is aligned: keep the sums, for the
+  // halves at 2n. (The pass schedule ends a pass at every power of two: render.h.)
+  if (track_halves_ && spp_ > 0 && (spp_ & (spp_ - 1)) == 0 && first_sample_ % (2 * spp_) == 0) {
+    // Over the older of the two: the newer one may be this count's first half.
+    Snapshot& s = snapshots_[0].spp < snapshots_[1].spp ? snapshots_[0] : snapshots_[1];
+    s.luminance.resize(std::size_t(width_) * std::size_t(height_));
+    for (std::size_t i = 0; i < s.luminance.size(); i++)
+      s.luminance[i] = luminance(glm::dvec3(sums_[4 * i], sums_[4 * i + 1], sums_[4 * i + 2]));
+    s.spp = spp_;
+  }
+}
+
+const Film::Snapshot* Film::halves() const {
+  for (const Snapshot& s : snapshots_)
+    if (s.spp > 0 && 2 * s.spp == spp_) return &s;
+  return nullptr;
+}
+
+void Film::track_halves(std::uint64_t first_sample) {
+  track_halves_ = true;
+  first_sample_ = first_sample;
+  forget_halves();
+  keep_half();  // the samples it already holds (a resumed render, a merge's first part)
+}
+
+void Film::forget_halves() {
+  for (Snapshot& s : snapshots_) s = Snapshot{};
 }
 
 void Film::restore(std::uint64_t spp, std::vector<double> sums) {
   if (sums.size() != sums_.size()) throw std::invalid_argument("Film::restore: wrong number of sums");
   sums_ = std::move(sums);
   spp_ = spp;
+  forget_halves();
 }
 
-void Film::merge(const Film& other) {
+void Film::merge(const Film& other, bool follows) {
   for (std::size_t i = 0; i < sums_.size(); i++) sums_[i] += other.sums_[i];
   spp_ += other.spp_;
+  if (follows) {
+    keep_half();  // as if other's samples were one more pass
+  } else {
+    track_halves_ = false;  // the halves of which samples: not known
+    forget_halves();
+  }
 }
 
 glm::dvec3 Film::mean(int x, int y) const {
@@ -70,6 +108,27 @@ double Film::pixel_standard_error(int x, int y) const {
 }
 
 double Film::per_pixel_relative_error() const {
+  // Both are upper bounds of the error under randomised QMC (film.h): the smaller one.
+  double variance = sample_variance_relative_error();
+  return has_halves() ? std::min(halves_relative_error(), variance) : variance;
+}
+
+double Film::halves_relative_error() const {
+  const Snapshot& half = *halves();
+  double variance_sum = 0.0;  // of the pixels' values: ((half A's mean - half B's) / 2)^2
+  const double h = double(half.spp);
+  for (std::size_t i = 0; i < half.luminance.size(); i++) {
+    double all = luminance(glm::dvec3(sums_[4 * i], sums_[4 * i + 1], sums_[4 * i + 2]));
+    double d = 0.5 * (half.luminance[i] / h - (all - half.luminance[i]) / h);
+    variance_sum += d * d;
+  }
+  double pixels = double(width_) * double(height_);
+  double image_mean = mean_luminance();
+  if (!std::isfinite(variance_sum) || !std::isfinite(image_mean)) return std::numeric_limits<double>::infinity();
+  return image_mean > 0.0 ? std::sqrt(variance_sum / pixels) / image_mean : 0.0;
+}
+
+double Film::sample_variance_relative_error() const {
   if (spp_ < 2) return 0.0;
   double variance_sum = 0.0;  // of the pixels' values: sample variance / spp
   for (int y = 0; y < height_; y++)

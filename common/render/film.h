@@ -1,6 +1,7 @@
 // The film: per-pixel sums of the samples' radiance, added up pass after pass in double
 // precision so that millions of samples stay exact (a float sum stops growing once the
-// sum is 2^24 times a sample). Also the sum of squared luminance, for the variance.
+// sum is 2^24 times a sample). Also the sum of squared luminance, for the variance, and for
+// randomised QMC the sums at half the samples, for the error of the mean (track_halves).
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,10 @@ class Film {
   void add_pass(std::span<const glm::vec4> pass, std::uint64_t samples);
 
   // Adds another film of the same size (independent samples of the same pixels).
-  void merge(const Film& other);
+  // follows: other's samples are the ones that come right after this film's in the
+  // sequence, so that the halves of track_halves() stay known (pt_merge of a render's
+  // parts in order); else the film forgets them.
+  void merge(const Film& other, bool follows = false);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -47,9 +51,29 @@ class Film {
   // spp), the noise a user sees in that pixel (0 below 2 spp).
   double pixel_standard_error(int x, int y) const;
   // The per-pixel relative error (the summary line, --target-error): the RMS over pixels of
-  // pixel_standard_error, divided by the image's mean luminance. 0 if unknown (spp < 2) or
-  // for a black image; infinity if the sums are not finite (never trusted to stop a render).
+  // each pixel's estimated standard error, divided by the image's mean luminance: when
+  // has_halves(), the smaller of the halves' figure (track_halves) and
+  // sample_variance_relative_error(), two upper bounds under randomised QMC; else the
+  // latter, the error of independent samples. 0 if
+  // unknown (spp < 2) or for a black image; infinity if the sums are not finite (never
+  // trusted to stop a render).
   double per_pixel_relative_error() const;
+  // The same figure from each pixel's sample variance (pixel_standard_error): the error of
+  // independent samples' mean, and an upper bound for randomised QMC (docs/sampling.md).
+  double sample_variance_relative_error() const;
+
+  // Randomised QMC (the Owen-scrambled Sobol sampler): a pixel's samples are not
+  // independent, and their sample variance over N overstates the error of their mean, the
+  // more the better the points cover the domain. From track_halves(first) on, the film keeps
+  // each pixel's luminance sum whenever it holds n = 2^k samples that start an aligned block
+  // [first, first + 2n) of the sequence; at 2n samples the block's two halves, each a
+  // scrambled net, give every pixel an estimate of its error: (mean of one half - mean of the
+  // other) / 2, whose square has the expectation Var(mean) - Cov(halves) (Var(mean) exactly
+  // for independent samples; above it where the halves' errors cancel, as in a net).
+  // first: the sequence index of the film's first sample (--samples FIRST:COUNT).
+  void track_halves(std::uint64_t first_sample);
+  // Whether the film now holds two such halves (spp a power of two, the block aligned).
+  bool has_halves() const { return halves() != nullptr; }
   // Estimated relative standard error of the image's mean luminance (0 if unknown): about
   // sqrt(pixels) times smaller than the per-pixel error, so not the noise a user sees.
   double relative_standard_error() const;
@@ -58,6 +82,20 @@ class Film {
   int width_, height_;
   std::uint64_t spp_ = 0;
   std::vector<double> sums_;  // per pixel: r, g, b, squared luminance
+  // track_halves(): whether it is on, the film's first sample's index, and each pixel's
+  // luminance sum at the last two such powers of two (at 2n samples the one at n is the
+  // first half, while the one at 2n is kept for 4n).
+  struct Snapshot {
+    std::uint64_t spp = 0;  // 0: none
+    std::vector<double> luminance;
+  };
+  bool track_halves_ = false;
+  std::uint64_t first_sample_ = 0;
+  Snapshot snapshots_[2];
+  const Snapshot* halves() const;  // the snapshot at spp / 2, if it is kept
+  void keep_half();  // keeps the sums if spp_ is such a power of two
+  void forget_halves();
+  double halves_relative_error() const;
 };
 
 }  // namespace pt

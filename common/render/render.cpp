@@ -86,6 +86,8 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
   bool shown = false;
   Clock::time_point start = Clock::now(), saved = start;
   std::uint64_t done = result.film.spp();
+  // Randomised QMC: the error from the two halves of each aligned block (film.h).
+  if (s.sampler == kSamplerSobol) result.film.track_halves(s.first_sample);
   // The BVH: the caller's, or built here from the scene; read by the backend's passes.
   std::optional<Bvh> built;
   const Bvh* bvh = params.accel == kAccelBvh ? h.bvh : nullptr;

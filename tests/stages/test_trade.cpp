@@ -72,14 +72,16 @@ Honesty honesty(const StageKernels& kernels, const Scene& scene, RenderSettings 
 // measurement precise enough that 20% is at least 4 (or as the caller says) of its standard errors: a failure is
 // a dishonest estimate, not bad luck, and a pass is not a lucky one either.
 // That is for independent samples, what the printed figure (the pixel's sample variance
-// over N) estimates. Under the default Owen-scrambled Sobol sampler the same figure is an
-// upper bound (docs/sampling.md): the printed error is at least the measured one.
-void check_honest(const Honesty& h, std::uint32_t sampler, double standard_errors = 4.0) {
+// over N) estimates. Under the default Owen-scrambled Sobol sampler the figure is the
+// smaller of two upper bounds, that one and the error from the means of the two halves of
+// the samples (Film::track_halves, docs/sampling.md): at least 0.8 of the measured error,
+// and at most `most` times it.
+void check_honest(const Honesty& h, std::uint32_t sampler, double standard_errors = 4.0, double most = 1.2) {
   INFO("printed " << h.printed << ", measured " << h.measured << " +- " << h.measured_relative_se * h.measured
                   << (sampler == kSamplerSobol ? " (sobol)" : " (independent)"));
   double ratio = h.printed / h.measured;
-  CHECK(ratio >= (sampler == kSamplerSobol ? 1.0 : 0.8));
-  if (sampler == kSamplerIndependent) CHECK(ratio <= 1.2);
+  CHECK(ratio >= 0.8);
+  CHECK(ratio <= (sampler == kSamplerSobol ? most : 1.2));
   CHECK(h.measured_relative_se <= 0.2 / standard_errors);
 }
 
@@ -91,8 +93,9 @@ Scene furnace() { return analytic::make_furnace({}); }
 
 // 20 seeds x 256 pixels (64 at 4096 spp) are 5,120 (1,280) squared errors: their mean is
 // known to about 3% (6%), the RMSE to half that, so +-20% is 6 or more standard errors.
-TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds (an upper bound "
-          "under sobol), furnace",
+// Under sobol the furnace's paths of many bounces gain little from the points' cover: the
+// halves' figure holds the printed error within 20% there too (measured 0.98 to 1.01).
+TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds, furnace",
           "[stage3][trade][statistical]") {
   const int runs = 20;
   for (std::uint32_t sampler : {kSamplerIndependent, kSamplerSobol}) {
@@ -108,8 +111,8 @@ TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one 
   }
 }
 
-TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds (an upper bound "
-          "under sobol), floor under a light",
+TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds (under sobol at least "
+          "0.8 and at most 6 or 4 times it), floor under a light",
           "[stage4][trade][statistical]") {
   const int runs = 20;
   analytic::FloorLightScene a;
@@ -120,7 +123,12 @@ TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one 
       INFO(spp << " spp, " << size << "x" << size);
       RenderSettings s = settings(size, size, spp, test_seed(6000 + std::uint32_t(spp) + 100 * sampler));
       s.sampler = sampler;
-      check_honest(honesty(stage4::kernels(), scene, s, luminances(floor_light_image(a, size)), runs), sampler);
+      // Under sobol at most 6 times the measured error at 16 spp, where the halves of 8
+      // points are poor nets and the sample variance's figure stays the smaller (measured
+      // 5.0), and 4 times from 256 spp on (measured 1.33 and 2.63; the sample variance's
+      // figure alone was 24 and 197 times it).
+      check_honest(honesty(stage4::kernels(), scene, s, luminances(floor_light_image(a, size)), runs), sampler, 4.0,
+                   spp <= 16 ? 6.0 : 4.0);
     }
   }
 }
@@ -152,14 +160,14 @@ Reference cornell_reference(const Film& film, int size) {
 }
 
 TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 or 40 seeds, Cornell box "
-          "against a long reference (independent samples)",
+          "against a long reference (independent samples; under sobol at least 0.8 and at most 2 times it)",
           "[stage4][trade][statistical]") {
   Scene scene = make_builtin_scene("cornell");
   RenderSettings r = settings(32, 32, 1u << 14, test_seed(8000));
   r.sampler = kSamplerIndependent;  // so that its sample variance is its error's
   const Film long_render = render_on_test_backend(stage4::kernels(), scene, r).film;
-  // Independent samples only: under sobol the error at 4096 spp is below what an
-  // affordable reference resolves (the closed-form cases above test the upper bound).
+  // Independent samples at 4096 spp only: under sobol the error there is below what an
+  // affordable reference resolves (the closed-form cases above test it).
   for (std::uint64_t spp : {16u, 256u, 4096u}) {
     // The box's pixel errors are heavy-tailed (the light's edge): 20 seeds x 1024 squared
     // errors know the RMSE to the 5% that check_honest asks for; at 4096 spp, to keep the
@@ -177,6 +185,21 @@ TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one 
     h.measured_relative_se *= mse / (mse - noise2);
     h.measured = std::sqrt(mse - noise2);
     check_honest(h, kSamplerIndependent, size == 16 ? 3.0 : 4.0);
+  }
+  // The default sampler at 16 and 256 spp, where the reference resolves its error: the
+  // smaller of the sample variance's and the halves' figures within 0.8 to 2 times the
+  // measured error (measured 1.48 and 1.12).
+  for (std::uint64_t spp : {16u, 256u}) {
+    const Reference ref = cornell_reference(long_render, 32);
+    const double mean = mean_of(ref.luminance), noise2 = mean_of(ref.variance) / (mean * mean);
+    INFO(spp << " spp, 32x32, sobol; the reference's own relative error " << std::sqrt(noise2));
+    RenderSettings s = settings(32, 32, spp, test_seed(8200 + std::uint32_t(spp)));
+    Honesty h = honesty(stage4::kernels(), scene, s, ref.luminance, 20);
+    const double mse = h.measured * h.measured;
+    CHECK(noise2 < 0.25 * mse);
+    h.measured_relative_se *= mse / (mse - noise2);
+    h.measured = std::sqrt(mse - noise2);
+    check_honest(h, kSamplerSobol, 4.0, 2.0);
   }
 }
 

@@ -163,6 +163,37 @@ TEST_CASE("film parts: a merge is a part: merged again it gives the same image",
   CHECK(format_ranges(again.ranges) == "0:64");
 }
 
+// Under the default sampler a render prints the error from the two halves of its samples
+// (common/render/film.h, track_halves); parts that follow one another keep those halves.
+TEST_CASE("film parts: a merge of parts that follow one another knows the halves of its samples, as one run does",
+          "[stage3][film][parts]") {
+  const Scene scene = make_builtin_scene("furnace");
+  RenderSettings s = settings(8, 8, 64, 13);
+  s.roulette = kRouletteThroughput;
+  REQUIRE(s.sampler == kSamplerSobol);
+  std::unique_ptr<Backend> backend = make_backend("cpu", stage3::kernels());
+  const RenderResult one = render(*backend, scene, s);
+  REQUIRE(one.film.has_halves());
+  const std::string a = render_part(stage3::kernels(), scene, s, 0, 16, "h_a.exr");
+  const std::string b = render_part(stage3::kernels(), scene, s, 16, 16, "h_b.exr");
+  const std::string c = render_part(stage3::kernels(), scene, s, 32, 32, "h_c.exr");
+  std::vector<std::string> notes;
+  const FilmPart all = merge_film_parts({read_film_part(c), read_film_part(a), read_film_part(b)}, notes);
+  CHECK(all.film.has_halves());
+  CHECK(all.film.per_pixel_relative_error() == Approx(one.film.per_pixel_relative_error()).epsilon(1e-12));
+  CHECK(all.film.per_pixel_relative_error() < all.film.sample_variance_relative_error());
+  // Samples 16 .. 63 are no aligned block; with a gap the halves are not known either.
+  CHECK(!merge_film_parts({read_film_part(b), read_film_part(c)}, notes).film.has_halves());
+  const FilmPart gap = merge_film_parts({read_film_part(a), read_film_part(c)}, notes);
+  CHECK(!gap.film.has_halves());
+  CHECK(gap.film.per_pixel_relative_error() == gap.film.sample_variance_relative_error());
+  // Independent samples: the sample variance's figure, merged or not.
+  s.sampler = kSamplerIndependent;
+  const std::string ia = render_part(stage3::kernels(), scene, s, 0, 32, "h_ia.exr");
+  const std::string ib = render_part(stage3::kernels(), scene, s, 32, 32, "h_ib.exr");
+  CHECK(!merge_film_parts({read_film_part(ia), read_film_part(ib)}, notes).film.has_halves());
+}
+
 TEST_CASE("film parts: parts of another render or samples held twice are refused, naming the file and the field; "
           "a gap is said",
           "[stage3][stage4][film][parts]") {

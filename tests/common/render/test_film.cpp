@@ -86,6 +86,87 @@ TEST_CASE("film: the per-pixel error is 0 when unknown or for a black image, and
   CHECK(broken.per_pixel_relative_error() == std::numeric_limits<double>::infinity());
 }
 
+// Randomised QMC (the default sampler): a pixel's samples are not independent, so the
+// error comes from the means of the two halves of its samples, each an aligned block of
+// the sequence (Film::track_halves, docs/sampling.md).
+TEST_CASE("film: under track_halves the per-pixel error comes from the two halves' means at powers of two",
+          "[film]") {
+  // Pixel 0's sample k of the first 16 alternates 0 and 2 in the first half (mean 1) and 0
+  // and 3 in the second (mean 1.5); pixel 1 is a constant 2 (white). Passes as the schedule
+  // runs them: 1, 1, 2, 4, 8, 16, 16 samples.
+  auto sample = [](std::uint64_t k, std::uint64_t count) {
+    return double(k % 2) * (k < count / 2 ? 2.0 : 3.0);
+  };
+  auto run = [&](Film& film, std::uint64_t last) {
+    std::uint64_t done = 0;
+    for (std::uint64_t n : {1u, 1u, 2u, 4u, 8u, 16u, 16u}) {
+      if (done + n > last) break;
+      double sum = 0.0, squares = 0.0;
+      for (std::uint64_t k = done; k < done + n; k++) sum += sample(k, last), squares += sample(k, last) * sample(k, last);
+      std::vector<glm::vec4> pass = {glm::vec4(glm::vec3(float(sum)), float(std::sqrt(squares))),
+                                     glm::vec4(glm::vec3(2.0f * float(n)), 2.0f * std::sqrt(float(n)))};
+      film.add_pass(pass, n);
+      done += n;
+    }
+  };
+  const double image_mean = (1.25 + 2.0) / 2.0;
+  // Pixel 0's samples: eight 0, four 2, four 3; sample variance (52 - 16 x 1.25^2) / 15.
+  const double sample_variance_error = std::sqrt(0.5 * (27.0 / 15.0) / 16.0) / image_mean;
+  Film film(2, 1);
+  film.track_halves(0);
+  run(film, 16);
+  REQUIRE(film.spp() == 16);
+  CHECK(film.has_halves());
+  // Halves' means 1 and 1.5: the pixel's error (1.5 - 1) / 2; pixel 1's is 0. RMS over the
+  // two pixels, over the image mean. Below the sample variance's figure, which stays at
+  // hand (error maps).
+  CHECK(film.per_pixel_relative_error() == Approx(std::sqrt(0.5 * 0.25 * 0.25) / image_mean));
+  CHECK(film.sample_variance_relative_error() == Approx(sample_variance_error));
+  // Of the two upper bounds, the smaller: halves that differ by more than the samples'
+  // spread (here 0 and 2, then 4 and 6) give way to the sample variance's figure.
+  Film apart(1, 1);
+  apart.track_halves(0);
+  for (float v : {0.0f, 2.0f, 4.0f, 6.0f}) apart.add_pass(std::vector<glm::vec4>{glm::vec4(v, v, v, v)}, 1);
+  REQUIRE(apart.has_halves());
+  CHECK(apart.per_pixel_relative_error() == Approx(apart.sample_variance_relative_error()));
+
+  // Without track_halves (independent samples), the sample variance's figure.
+  Film plain(2, 1);
+  run(plain, 16);
+  CHECK(!plain.has_halves());
+  CHECK(plain.per_pixel_relative_error() == Approx(plain.sample_variance_relative_error()));
+  CHECK(plain.sample_variance_relative_error() == Approx(sample_variance_error));
+
+  // 48 samples (a pass end, not a power of two): no two aligned halves, the sample variance's figure.
+  Film past(2, 1);
+  past.track_halves(0);
+  run(past, 64);
+  REQUIRE(past.spp() == 48);
+  CHECK(!past.has_halves());
+  CHECK(past.per_pixel_relative_error() == Approx(past.sample_variance_relative_error()));
+
+  // Samples 16 .. 31 (--samples 16:16) are an aligned block: halves 16 .. 23 and 24 .. 31.
+  Film part(2, 1);
+  part.track_halves(16);
+  run(part, 16);
+  CHECK(part.has_halves());
+  CHECK(part.per_pixel_relative_error() == Approx(std::sqrt(0.5 * 0.25 * 0.25) / image_mean));
+  // Samples 8 .. 23 are not: its halves would be 8 .. 15 and 16 .. 23, not one net split in two.
+  Film shifted(2, 1);
+  shifted.track_halves(8);
+  run(shifted, 16);
+  CHECK(!shifted.has_halves());
+
+  // Merged or restored films do not know their halves.
+  Film merged = film;
+  merged.merge(plain);
+  CHECK(!merged.has_halves());
+  Film restored(2, 1);
+  restored.track_halves(0);
+  restored.restore(film.spp(), film.sums());
+  CHECK(!restored.has_halves());
+}
+
 TEST_CASE("png: exposure, sRGB curve and clamp", "[image]") {
   CHECK(encode_srgb8(0.0f, 0.0f) == 0);
   CHECK(encode_srgb8(-1.0f, 0.0f) == 0);
