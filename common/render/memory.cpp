@@ -23,10 +23,12 @@ std::uint64_t available_memory_bytes() {
 }
 
 void check_image_memory(int width, int height, bool resuming) {
-  // Film: 4 doubles per pixel (twice while a checkpoint's film is read in); pass buffer: 4
-  // floats per pixel; output: 3 floats.
+  // Film: 4 doubles per pixel (twice while a checkpoint's film is read in), and 2 more for
+  // the halves' sums under the default sampler (film.h, track_halves); pass buffer: 4 floats
+  // per pixel; output: 3 floats.
   const std::uint64_t films = resuming ? 2 : 1;
-  const std::uint64_t host_per_pixel = films * 4 * sizeof(double) + 4 * sizeof(float) + 3 * sizeof(float);
+  const std::uint64_t host_per_pixel =
+      films * 4 * sizeof(double) + 2 * sizeof(double) + 4 * sizeof(float) + 3 * sizeof(float);
   std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height), bytes = 0;
   if (pixels > (std::uint64_t(1) << 31)) {
     throw Error(kExitBadOption, "image " + std::to_string(width) + "x" + std::to_string(height) +
