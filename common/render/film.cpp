@@ -108,9 +108,11 @@ double Film::pixel_standard_error(int x, int y) const {
 }
 
 double Film::per_pixel_relative_error() const {
-  // Both are upper bounds of the error under randomised QMC (film.h): the smaller one.
+  // Both are upper bounds of the error under randomised QMC (film.h): the smaller one, the
+  // halves' only where enough pixels average its one degree of freedom per pixel.
   double variance = sample_variance_relative_error();
-  return has_halves() ? std::min(halves_relative_error(), variance) : variance;
+  const bool enough = double(width_) * double(height_) >= double(kMinPixelsForHalves);
+  return has_halves() && enough ? std::min(halves_relative_error(), variance) : variance;
 }
 
 double Film::halves_relative_error() const {

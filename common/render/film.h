@@ -15,6 +15,11 @@ namespace pt {
 // Rec. 709 luminance of linear RGB, the weights render_pixel.glsl uses for the variance.
 inline double luminance(glm::dvec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+// The halves' figure rests on one degree of freedom per pixel: from this many pixels on its
+// RMS is known to about 9% (1 / sqrt(2 x 64)), so that --target-error does not stop on a
+// lucky draw; a smaller image prints the sample variance's figure (N - 1 per pixel).
+constexpr int kMinPixelsForHalves = 64;
+
 class Film {
  public:
   Film(int width, int height);
@@ -52,9 +57,9 @@ class Film {
   double pixel_standard_error(int x, int y) const;
   // The per-pixel relative error (the summary line, --target-error): the RMS over pixels of
   // each pixel's estimated standard error, divided by the image's mean luminance: when
-  // has_halves(), the smaller of the halves' figure (track_halves) and
-  // sample_variance_relative_error(), two upper bounds under randomised QMC; else the
-  // latter, the error of independent samples. 0 if
+  // has_halves() and the image has kMinPixelsForHalves pixels or more, the smaller of the
+  // halves' figure (track_halves) and sample_variance_relative_error(), two upper bounds
+  // under randomised QMC; else the latter, the error of independent samples. 0 if
   // unknown (spp < 2) or for a black image; infinity if the sums are not finite (never
   // trusted to stop a render).
   double per_pixel_relative_error() const;

@@ -91,9 +91,9 @@ TEST_CASE("film: the per-pixel error is 0 when unknown or for a black image, and
 // the sequence (Film::track_halves, docs/sampling.md).
 TEST_CASE("film: under track_halves the per-pixel error comes from the two halves' means at powers of two",
           "[film]") {
-  // Pixel 0's sample k of the first 16 alternates 0 and 2 in the first half (mean 1) and 0
-  // and 3 in the second (mean 1.5); pixel 1 is a constant 2 (white). Passes as the schedule
-  // runs them: 1, 1, 2, 4, 8, 16, 16 samples.
+  // Even pixels: sample k of the first 16 alternates 0 and 2 in the first half (mean 1) and
+  // 0 and 3 in the second (mean 1.5); odd pixels are a constant 2 (white). Passes as the
+  // schedule runs them: 1, 1, 2, 4, 8, 16, 16 samples. 64 pixels (kMinPixelsForHalves).
   auto sample = [](std::uint64_t k, std::uint64_t count) {
     return double(k % 2) * (k < count / 2 ? 2.0 : 3.0);
   };
@@ -103,8 +103,11 @@ TEST_CASE("film: under track_halves the per-pixel error comes from the two halve
       if (done + n > last) break;
       double sum = 0.0, squares = 0.0;
       for (std::uint64_t k = done; k < done + n; k++) sum += sample(k, last), squares += sample(k, last) * sample(k, last);
-      std::vector<glm::vec4> pass = {glm::vec4(glm::vec3(float(sum)), float(std::sqrt(squares))),
-                                     glm::vec4(glm::vec3(2.0f * float(n)), 2.0f * std::sqrt(float(n)))};
+      std::vector<glm::vec4> pass;
+      for (int p = 0; p < kMinPixelsForHalves / 2; p++) {
+        pass.push_back(glm::vec4(glm::vec3(float(sum)), float(std::sqrt(squares))));
+        pass.push_back(glm::vec4(glm::vec3(2.0f * float(n)), 2.0f * std::sqrt(float(n))));
+      }
       film.add_pass(pass, n);
       done += n;
     }
@@ -112,7 +115,7 @@ TEST_CASE("film: under track_halves the per-pixel error comes from the two halve
   const double image_mean = (1.25 + 2.0) / 2.0;
   // Pixel 0's samples: eight 0, four 2, four 3; sample variance (52 - 16 x 1.25^2) / 15.
   const double sample_variance_error = std::sqrt(0.5 * (27.0 / 15.0) / 16.0) / image_mean;
-  Film film(2, 1);
+  Film film(2, 32);
   film.track_halves(0);
   run(film, 16);
   REQUIRE(film.spp() == 16);
@@ -124,21 +127,27 @@ TEST_CASE("film: under track_halves the per-pixel error comes from the two halve
   CHECK(film.sample_variance_relative_error() == Approx(sample_variance_error));
   // Of the two upper bounds, the smaller: halves that differ by more than the samples'
   // spread (here 0 and 2, then 4 and 6) give way to the sample variance's figure.
-  Film apart(1, 1);
+  Film apart(8, 8);
   apart.track_halves(0);
-  for (float v : {0.0f, 2.0f, 4.0f, 6.0f}) apart.add_pass(std::vector<glm::vec4>{glm::vec4(v, v, v, v)}, 1);
+  for (float v : {0.0f, 2.0f, 4.0f, 6.0f}) apart.add_pass(std::vector<glm::vec4>(64, glm::vec4(v, v, v, v)), 1);
   REQUIRE(apart.has_halves());
   CHECK(apart.per_pixel_relative_error() == Approx(apart.sample_variance_relative_error()));
+  // Fewer than kMinPixelsForHalves pixels: the sample variance's figure, halves or not.
+  Film small(2, 1);
+  small.track_halves(0);
+  for (float v : {0.0f, 2.0f, 0.0f, 2.0f}) small.add_pass(std::vector<glm::vec4>(2, glm::vec4(v, v, v, v)), 1);
+  REQUIRE(small.has_halves());
+  CHECK(small.per_pixel_relative_error() == Approx(small.sample_variance_relative_error()));
 
   // Without track_halves (independent samples), the sample variance's figure.
-  Film plain(2, 1);
+  Film plain(2, 32);
   run(plain, 16);
   CHECK(!plain.has_halves());
   CHECK(plain.per_pixel_relative_error() == Approx(plain.sample_variance_relative_error()));
   CHECK(plain.sample_variance_relative_error() == Approx(sample_variance_error));
 
   // 48 samples (a pass end, not a power of two): no two aligned halves, the sample variance's figure.
-  Film past(2, 1);
+  Film past(2, 32);
   past.track_halves(0);
   run(past, 64);
   REQUIRE(past.spp() == 48);
@@ -146,13 +155,13 @@ TEST_CASE("film: under track_halves the per-pixel error comes from the two halve
   CHECK(past.per_pixel_relative_error() == Approx(past.sample_variance_relative_error()));
 
   // Samples 16 .. 31 (--samples 16:16) are an aligned block: halves 16 .. 23 and 24 .. 31.
-  Film part(2, 1);
+  Film part(2, 32);
   part.track_halves(16);
   run(part, 16);
   CHECK(part.has_halves());
   CHECK(part.per_pixel_relative_error() == Approx(std::sqrt(0.5 * 0.25 * 0.25) / image_mean));
   // Samples 8 .. 23 are not: its halves would be 8 .. 15 and 16 .. 23, not one net split in two.
-  Film shifted(2, 1);
+  Film shifted(2, 32);
   shifted.track_halves(8);
   run(shifted, 16);
   CHECK(!shifted.has_halves());
@@ -161,7 +170,7 @@ TEST_CASE("film: under track_halves the per-pixel error comes from the two halve
   Film merged = film;
   merged.merge(plain);
   CHECK(!merged.has_halves());
-  Film restored(2, 1);
+  Film restored(2, 32);
   restored.track_halves(0);
   restored.restore(film.spp(), film.sums());
   CHECK(!restored.has_halves());
