@@ -142,13 +142,10 @@ double Film::sample_variance_relative_error() const {
 }
 
 double Film::relative_standard_error() const {
-  if (spp_ < 2) return 0.0;
-  double variance_sum = 0.0;
-  for (int y = 0; y < height_; y++)
-    for (int x = 0; x < width_; x++) variance_sum += sample_variance(x, y) / double(spp_);
-  double pixels = double(width_) * double(height_);
-  double image_mean = mean_luminance();
-  return image_mean > 0.0 ? std::sqrt(variance_sum) / pixels / image_mean : 0.0;
+  // The pixels' errors are independent (each pixel has its own sequence), so the image
+  // mean's variance is the sum of theirs over pixels^2: the per-pixel figure's variances,
+  // whichever estimate that figure took (film.h), over sqrt(pixels).
+  return per_pixel_relative_error() / std::sqrt(double(width_) * double(height_));
 }
 
 }  // namespace pt

@@ -79,8 +79,9 @@ class Film {
   void track_halves(std::uint64_t first_sample);
   // Whether the film now holds two such halves (spp a power of two, the block aligned).
   bool has_halves() const { return halves() != nullptr; }
-  // Estimated relative standard error of the image's mean luminance (0 if unknown): about
-  // sqrt(pixels) times smaller than the per-pixel error, so not the noise a user sees.
+  // Estimated relative standard error of the image's mean luminance (0 if unknown): the
+  // per-pixel error over sqrt(pixels) (the pixels' errors are independent), so not the
+  // noise a user sees.
   double relative_standard_error() const;
 
  private:

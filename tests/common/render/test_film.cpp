@@ -125,6 +125,8 @@ TEST_CASE("film: under track_halves the per-pixel error comes from the two halve
   // hand (error maps).
   CHECK(film.per_pixel_relative_error() == Approx(std::sqrt(0.5 * 0.25 * 0.25) / image_mean));
   CHECK(film.sample_variance_relative_error() == Approx(sample_variance_error));
+  // The image mean's error follows the same estimate: over sqrt(pixels).
+  CHECK(film.relative_standard_error() == Approx(film.per_pixel_relative_error() / 8.0));
   // Of the two upper bounds, the smaller: halves that differ by more than the samples'
   // spread (here 0 and 2, then 4 and 6) give way to the sample variance's figure.
   Film apart(8, 8);
