@@ -100,19 +100,21 @@ def run_tests(g, ctx):
     return rc, timed_out
 
 
+def catch_name(name):
+    """A test's name as a Catch2 test spec that selects it alone: a backslash before the
+    characters a spec gives a meaning (a comma separates specs, brackets hold tags)."""
+    return "".join("\\" + c if c in ",[]\\\"" else c for c in name)
+
+
 def crashed_in(g, ctx):
-    """The test in which g's tests die of a signal, from a second run with Catch2's console
-    reporter (logs/NAME.crash.log), which names the test whose run a fatal signal ends; None
-    if that run does not crash the same way."""
+    """The test in which g's tests die of a signal: each test of the lab run alone, in the order
+    of the run, until one dies (logs/NAME.crash.log holds the last one's output); None if none
+    does. (Catch2 names the test in its report of the signal, but a report written to a file is
+    buffered and a fatal signal may end the process before it is written out.)"""
     log = os.path.join(ctx["logs"], f"{g.name}.crash.log")
-    run_group([ctx["test_bin"], "-#"] + ctx["specs"], log, ctx["args"].timeout, env=test_env())
-    with open(log, encoding="utf-8", errors="replace") as fh:
-        lines = fh.read().splitlines()
-    name = None
-    for i, line in enumerate(lines):
-        if line.startswith("-----") and i + 2 < len(lines) and lines[i + 2].startswith("-----"):
-            name = lines[i + 1]  # Catch2's header of the test it reports on
-        elif "due to a fatal error condition" in line:
+    for name in ctx["tests"]:
+        rc, _ = run_group([ctx["test_bin"], "-#", catch_name(name)], log, ctx["args"].timeout, env=test_env())
+        if rc < 0:
             return name
     return None
 
@@ -128,7 +130,7 @@ def judge(g, ctx, rc, timed_out):
         return
     if rc < 0:
         # Catch2 reports the signal in the test case it stopped, then dies of it; its XML file
-        # may not have been written out that far, and then a second run on the console says.
+        # may not have been written out that far, and then each test run alone says (crashed_in).
         fatal = next((n for n, ok, r in cases if r.startswith("FatalErrorCondition")), running)
         fatal = fatal or crashed_in(g, ctx)
         g.verdict, g.detail = "CRASH", signal_name(rc) + (f" in \"{fatal}\"" if fatal else "")
