@@ -108,14 +108,27 @@ double Film::pixel_standard_error(int x, int y) const {
 }
 
 double Film::per_pixel_relative_error() const {
+  if (spp_ < 2) return 0.0;
   // Both are upper bounds of the error under randomised QMC (film.h): the smaller one, the
   // halves' only where enough pixels average its one degree of freedom per pixel.
-  double variance = sample_variance_relative_error();
+  double variance_sum = sample_variance_sum();
   const bool enough = double(width_) * double(height_) >= double(kMinPixelsForHalves);
-  return has_halves() && enough ? std::min(halves_relative_error(), variance) : variance;
+  if (has_halves() && enough) variance_sum = std::min(halves_variance_sum(), variance_sum);
+  return relative_rms(variance_sum);
 }
 
-double Film::halves_relative_error() const {
+double Film::sample_variance_relative_error() const {
+  return spp_ < 2 ? 0.0 : relative_rms(sample_variance_sum());
+}
+
+double Film::sample_variance_sum() const {
+  double variance_sum = 0.0;  // of the pixels' values: sample variance / spp
+  for (int y = 0; y < height_; y++)
+    for (int x = 0; x < width_; x++) variance_sum += sample_variance(x, y) / double(spp_);
+  return variance_sum;
+}
+
+double Film::halves_variance_sum() const {
   const Snapshot& half = *halves();
   double variance_sum = 0.0;  // of the pixels' values: ((half A's mean - half B's) / 2)^2
   const double h = double(half.spp);
@@ -124,17 +137,10 @@ double Film::halves_relative_error() const {
     double d = 0.5 * (half.luminance[i] / h - (all - half.luminance[i]) / h);
     variance_sum += d * d;
   }
-  double pixels = double(width_) * double(height_);
-  double image_mean = mean_luminance();
-  if (!std::isfinite(variance_sum) || !std::isfinite(image_mean)) return std::numeric_limits<double>::infinity();
-  return image_mean > 0.0 ? std::sqrt(variance_sum / pixels) / image_mean : 0.0;
+  return variance_sum;
 }
 
-double Film::sample_variance_relative_error() const {
-  if (spp_ < 2) return 0.0;
-  double variance_sum = 0.0;  // of the pixels' values: sample variance / spp
-  for (int y = 0; y < height_; y++)
-    for (int x = 0; x < width_; x++) variance_sum += sample_variance(x, y) / double(spp_);
+double Film::relative_rms(double variance_sum) const {
   double pixels = double(width_) * double(height_);
   double image_mean = mean_luminance();
   if (!std::isfinite(variance_sum) || !std::isfinite(image_mean)) return std::numeric_limits<double>::infinity();

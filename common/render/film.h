@@ -101,7 +101,12 @@ class Film {
   const Snapshot* halves() const;  // the snapshot at spp / 2, if it is kept
   void keep_half();  // keeps the sums if spp_ is such a power of two
   void forget_halves();
-  double halves_relative_error() const;
+  // The sums over pixels of each pixel's estimated variance of its mean: from its sample
+  // variance, and from the halves (has_halves() only); relative_rms() turns one into the
+  // per-pixel relative error (infinity if it or the image's mean is not finite).
+  double sample_variance_sum() const;
+  double halves_variance_sum() const;
+  double relative_rms(double variance_sum) const;
 };
 
 }  // namespace pt
