@@ -53,6 +53,10 @@ const uint kAccelBvh = 1u;
 // The deepest a BVH may be: the traversal's stack (common/kernel/bvh.glsl) holds one
 // node per level, and the build (common/scene/bvh.cpp) never goes deeper.
 const uint kBvhStackSize = 64u;
+// The stack holds a pending node as one number, its first_or_left shifted above this many
+// bits of its count (a leaf holds at most kBvhMaxLeaf = 4 triangles, common/scene/bvh.h),
+// so first_or_left stays below 2^29 (build_bvh refuses more than 2^28 triangles).
+const uint kBvhCountBits = 3u;
 
 // Light kinds of the light table (stage4's light sampling).
 const uint kLightTriangle = 0u;  // an emissive triangle: a point uniform on its area

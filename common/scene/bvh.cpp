@@ -12,6 +12,9 @@
 #include <future>
 #include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "common/base/error.h"
 
 namespace pt {
 
@@ -239,6 +242,10 @@ std::string BvhStats::summary() const {
 }
 
 Bvh build_bvh(std::span<const Triangle> triangles) {
+  if (triangles.size() > kBvhMaxTriangles) {
+    throw Error(kExitBadScene, "the scene has " + std::to_string(triangles.size()) + " triangles and the BVH takes at most " +
+                                   std::to_string(kBvhMaxTriangles) + " (2^28); use a coarser mesh");
+  }
   const auto start = std::chrono::steady_clock::now();
   Bvh bvh = Builder(triangles).build();
   bvh.stats.nodes = bvh.nodes.size();

@@ -31,10 +31,15 @@ struct Bvh {
 
 // Most triangles in one leaf: a node with more is always split.
 constexpr unsigned kBvhMaxLeaf = 4;
+static_assert(kBvhMaxLeaf < (1u << kBvhCountBits), "the walk's stack keeps a leaf's count in kBvhCountBits bits");
+// Most triangles a BVH takes: its nodes (fewer than twice the triangles) and the leaves'
+// first entries then fit the stack's 32 - kBvhCountBits bits (scene_types.h).
+constexpr std::size_t kBvhMaxTriangles = std::size_t(1) << (31 - kBvhCountBits);
 
 // Builds the hierarchy in O(n log n): every primitive index lands in exactly one leaf, a
 // child's box lies inside its parent's, every triangle inside its leaf's box, and the
-// depth stays below kBvhStackSize (scene_types.h).
+// depth stays below kBvhStackSize (scene_types.h). More than kBvhMaxTriangles: pt::Error,
+// exit 3.
 Bvh build_bvh(std::span<const Triangle> triangles);
 
 }  // namespace pt
