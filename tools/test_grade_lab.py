@@ -17,11 +17,18 @@ roulette, lab 4's emission rule) is appended to each as it is. Lab 2
   f_endless_loop     while (true) {} in the sampler                 TIMEOUT
   g_crash            a read far out of the materials' bounds        CRASH SIGSEGV
   h_empty/           a folder without lab2.glsl                     COMPILE ERROR no lab2.glsl
+  m_NAME             each other known-wrong answer of labs/mutants.h FAIL, not put down to a
+                     (LAB2_MUTANTS below; d_theta_uniform is the     convention
+                     eighth), the renamed reference wrapped to make it
 and grades.csv and grades.xml hold one row and one testcase per submission. Lab 4
 (common/kernel/triangle_light.glsl, emission_rule.glsl):
   a_correct          the reference                                  PASS
   b_pdf_doubled      the sample's pdf twice the right one           FAIL, the mean of 1/pdf among the criteria
   c_pdf_mismatch     triangle_light_pdf twice the sample's pdf      FAIL, the held-back test among them
+  m_NAME             each known-wrong answer of labs/mutants.h       FAIL, not put down to a
+                     (LAB4_MUTANTS below)                            convention
+The mutants of labs 3, 5 and 6, whose builds this test does not make, are graded by mutation
+in the check build only (the lab_mutant_NAME entries of tests/CMakeLists.txt).
 usage: tools/test_grade_lab.py [WORK]   (ctest entry grade_lab; WORK: lab 2's build, and WORK_lab4
 lab 4's, kept between runs so that only the first run builds each lab from nothing, ~7 min
 each on 2 cores; PT_GRADE_TEST_TIMEOUT: seconds for one lab 2 submission's tests, default 90
@@ -43,6 +50,15 @@ TOOL = os.path.join(HERE, "grade_lab.py")
 # cores (20 tests, every test that runs stage2 being tagged [stage2]); 90 leaves room for a
 # busy machine.
 TIMEOUT = os.environ.get("PT_GRADE_TEST_TIMEOUT", "90")
+
+
+# The known-wrong answers of labs/mutants.h that the fixtures below write as submissions
+# (m_NAME); lab 2's uniform_theta_uniform is d_theta_uniform. main() checks the lists
+# against mutants.h, so that a mutant added there is not left out here.
+LAB2_MUTANTS = ["uniform_no_radius", "uniform_pdf_one_over_pi", "bounce_printed_factor", "bounce_no_cosine",
+                "bounce_no_pdf", "roulette_times_p", "roulette_unweighted"]
+LAB4_MUTANTS = ["light_no_cos_y", "light_no_distance", "light_no_area", "light_no_pick", "light_pdf_no_pick",
+                "light_both_sides", "light_unfolded_barycentric", "emission_always", "emission_camera_only"]
 
 
 def expect(cond, what, output=""):
@@ -102,7 +118,36 @@ def lab2_fixtures(folder):
         # the sample: 0 * x is not folded away without -ffast-math).
         "g_crash.glsl": variant(sampler="return reference_sampler(u + vec2(0.0f * materials[100000000 + int(u.y)].metallic));"),
         "h_empty/README.txt": "lab2.glsl was forgotten\n",
+        # Lab 2's other known-wrong answers (labs/mutants.h; d_theta_uniform is its
+        # uniform_theta_uniform), each the renamed reference wrapped to make that mistake.
+        "m_uniform_no_radius.glsl": variant(sampler="vec3 v = reference_sampler(u);\n  "
+                                                    "float r = max(length(vec2(v.x, v.y)), 1e-30f);\n  "
+                                                    "return vec3(v.x / r, v.y / r, v.z);"),
+        "m_uniform_pdf_one_over_pi.glsl": variant(pdf="return 1.0f / kPi;"),
     }, also=reference("common/kernel/russian_roulette.glsl"))
+    # The bounce weight: the printed factor (erratum 1), the cosine or the pdf left out.
+    weight = {"vec3 uniform_bounce_weight(vec3 f, vec3 wi)": "reference_weight"}
+
+    def bounce(body):
+        return with_wrappers(rel, weight, f"vec3 uniform_bounce_weight(vec3 f, vec3 wi) {{\n  {body}\n}}\n")
+
+    write(folder, {
+        "m_bounce_printed_factor.glsl": bounce("return reference_weight(f, wi) / (4.0f * kPi * kPi);"),
+        "m_bounce_no_cosine.glsl": bounce("return reference_weight(f, wi) / max(wi.z, 1e-30f);"),
+        "m_bounce_no_pdf.glsl": bounce("return reference_weight(f, wi) / (2.0f * kPi);"),
+    }, also=reference("common/kernel/russian_roulette.glsl"))
+    # The roulette's survivor weight, 1 / p: made p, or 1.
+    roulette = {"float russian_roulette(vec3 beta, uint mode)": "reference_roulette"}
+
+    def survivor(value):
+        return with_wrappers("common/kernel/russian_roulette.glsl", roulette,
+                             "float russian_roulette(vec3 beta, uint mode) {\n  float r = reference_roulette(beta, mode);\n"
+                             f"  return r > 0.0f ? {value} : 0.0f;\n}}\n")
+
+    write(folder, {
+        "m_roulette_times_p.glsl": survivor("1.0f / r"),
+        "m_roulette_unweighted.glsl": survivor("1.0f"),
+    }, also=reference(rel))
 
 
 def lab4_fixtures(folder):
@@ -110,8 +155,9 @@ def lab4_fixtures(folder):
     renames = {"LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick)": "reference_sample",
                "float triangle_light_pdf(uint index, vec3 wi, float dist)": "reference_pdf"}
 
-    def variant(sample="return reference_sample(index, p, u, pick);", pdf="return reference_pdf(index, wi, dist);"):
-        return with_wrappers(rel, renames,
+    def variant(sample="return reference_sample(index, p, u, pick);", pdf="return reference_pdf(index, wi, dist);",
+                helpers=""):
+        return with_wrappers(rel, renames, helpers +
                              f"LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {{\n  {sample}\n}}\n\n"
                              f"float triangle_light_pdf(uint index, vec3 wi, float dist) {{\n  {pdf}\n}}\n")
 
@@ -122,6 +168,72 @@ def lab4_fixtures(folder):
         # held-back one ([held_back], not in the handout) among them.
         "c_pdf_mismatch.glsl": variant(pdf="return 2.0f * reference_pdf(index, wi, dist);"),
     }, also=reference("common/kernel/emission_rule.glsl"))
+    # Lab 4's known-wrong answers (labs/mutants.h): a factor of the pdf d^2 / (cos_y area) x
+    # P(light) left out in the sample and in triangle_light_pdf alike (with_pdf() multiplies
+    # a sample's pdf by what was left out and divides its weight by it), or only in the pdf;
+    # the back of a one-sided light lit; the barycentric weights unfolded; the emission rule.
+    helpers = """
+vec3 mutant_normal(uint index) {
+  Triangle t = triangles[index];
+  return normalize(cross(vec3(t.p1 - t.p0), vec3(t.p2 - t.p0)));
+}
+
+float mutant_area(uint index) {
+  Triangle t = triangles[index];
+  return 0.5f * length(cross(vec3(t.p1 - t.p0), vec3(t.p2 - t.p0)));
+}
+
+float mutant_pick(uint index) {
+  return light_pick_probability(triangles[index].light);
+}
+
+LightSample with_pdf(LightSample s, float factor) {
+  if (s.pdf > 0.0f) {
+    s.pdf *= factor;
+    s.weight /= factor;
+  }
+  return s;
+}
+
+// wi mirrored through the plane of triangle `index`.
+vec3 mutant_mirror(uint index, vec3 wi) {
+  vec3 n = mutant_normal(index);
+  return wi - 2.0f * dot(wi, n) * n;
+}
+"""
+
+    def mistake(sample_factor, pdf_factor):
+        return variant(helpers=helpers, sample=f"LightSample s = reference_sample(index, p, u, pick);\n  return with_pdf(s, {sample_factor});",
+                                 pdf=f"float r = reference_pdf(index, wi, dist);\n  return r > 0.0f ? r * {pdf_factor} : 0.0f;")
+
+    emission = {"bool counts_emission(uint depth, bool after_delta)": "reference_counts"}
+
+    def rule(body):
+        return with_wrappers("common/kernel/emission_rule.glsl", emission,
+                             f"bool counts_emission(uint depth, bool after_delta) {{\n  {body}\n}}\n")
+
+    write(folder, {
+        "m_light_no_cos_y.glsl": mistake("abs(dot(s.wi, mutant_normal(index)))", "abs(dot(wi, mutant_normal(index)))"),
+        "m_light_no_distance.glsl": mistake("1.0f / (s.dist * s.dist)", "(1.0f / (dist * dist))"),
+        "m_light_no_area.glsl": mistake("mutant_area(index)", "mutant_area(index)"),
+        "m_light_no_pick.glsl": mistake("1.0f / pick", "(1.0f / mutant_pick(index))"),
+        "m_light_pdf_no_pick.glsl": mistake("1.0f", "(1.0f / mutant_pick(index))"),
+        "m_light_both_sides.glsl": variant(helpers=helpers,
+            sample="LightSample s = reference_sample(index, p, u, pick);\n  if (s.pdf > 0.0f) return s;\n"
+                   "  // p mirrored through the light's plane sees its front: the same point, distance and cos_y.\n"
+                   "  vec3 n = mutant_normal(index);\n"
+                   "  LightSample m = reference_sample(index, p - 2.0f * dot(p - vec3(triangles[index].p0), n) * n, u, pick);\n"
+                   "  m.wi = mutant_mirror(index, m.wi);\n  return m;",
+            pdf="float r = reference_pdf(index, wi, dist);\n"
+                "  return r > 0.0f ? r : reference_pdf(index, mutant_mirror(index, wi), dist);"),
+        # u turned into the numbers for which the reference's barycentric weights are u's own.
+        "m_light_unfolded_barycentric.glsl": variant(
+            sample="float s = u.x + u.y;\n  return reference_sample(index, p, vec2(s * s, s > 0.0f ? u.y / s : 0.0f), pick);"),
+    }, also=reference("common/kernel/emission_rule.glsl"))
+    write(folder, {
+        "m_emission_always.glsl": rule("return reference_counts(depth, after_delta) || true;"),
+        "m_emission_camera_only.glsl": rule("return reference_counts(depth, false);"),
+    }, also=reference(rel))
 
 
 def grade(lab, subs, out, work, timeout):
@@ -156,6 +268,8 @@ def lab2(subs, out, work):
         "g_crash": r"CRASH SIGSEGV in \".*\"",
         "h_empty": r"COMPILE ERROR no lab2\.glsl in the submission",
     }
+    for mutant in LAB2_MUTANTS:  # each known-wrong answer fails, and not as a convention
+        expected["m_" + mutant] = r"FAIL (?!\(convention\)).* -> .*"
     check_lines(lines, expected)
     rows = list(csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")))
     expect([(row["name"], row["verdict"]) for row in rows] ==
@@ -165,8 +279,9 @@ def lab2(subs, out, work):
            "grades.csv: no failure is put down to a convention (the project fixes none)")
     suite = ET.parse(os.path.join(out, "grades.xml")).getroot().find("testsuite")
     cases = {c.get("name"): c for c in suite.iter("testcase")}
-    expect(sorted(cases) == sorted(expected) and suite.get("tests") == "8" and suite.get("failures") == "2"
-           and suite.get("errors") == "4", "grades.xml: one JUnit testcase per submission, 2 failures, 4 errors")
+    expect(sorted(cases) == sorted(expected) and suite.get("tests") == str(len(expected))
+           and suite.get("failures") == str(2 + len(LAB2_MUTANTS)) and suite.get("errors") == "4",
+           "grades.xml: one JUnit testcase per submission, a failure for each wrong answer, 4 errors")
     expect(all(cases[n].find("failure") is None and cases[n].find("error") is None for n in ("a_correct", "e_convention"))
            and cases["c_pdf_2pi"].find("failure").get("type") == "FAIL"
            and cases["g_crash"].find("error").get("type") == "CRASH", "grades.xml: each testcase's outcome and type")
@@ -175,11 +290,14 @@ def lab2(subs, out, work):
 def lab4(subs, out, work):
     os.makedirs(subs)
     lab4_fixtures(subs)
-    check_lines(grade(4, subs, out, work, "300"), {  # no endless loop among them
+    expected = {
         "a_correct": r"PASS",
         "b_pdf_doubled": r"FAIL .*light sampling: the mean of 1/pdf is the solid angle .* -> .*",
         "c_pdf_mismatch": r"FAIL .*light sampling: triangle_light_pdf is d\^2 / \(cos_y area\) times the pick.* -> .*",
-    })
+    }
+    for mutant in LAB4_MUTANTS:
+        expected["m_" + mutant] = r"FAIL (?!\(convention\)).* -> .*"
+    check_lines(grade(4, subs, out, work, "300"), expected)  # no endless loop among them
 
 
 def main():
@@ -195,6 +313,10 @@ def main():
             r = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
             expect(r.returncode == 2 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
                    and r.stderr.startswith("grade_lab: "), f"bad usage ({what}) exits 2 with one line", r.stderr)
+        listed = re.findall(r'is_mutant\(([0-9]), "([a-z_0-9]+)"\)', open(os.path.join(REPO, "labs", "mutants.h")).read())
+        for lab, mine in (("2", LAB2_MUTANTS + ["uniform_theta_uniform"]), ("4", LAB4_MUTANTS)):
+            expect(sorted(set(m for l, m in listed if l == lab)) == sorted(mine),
+                   f"the fixtures write each of lab {lab}'s mutants in labs/mutants.h")
         labs = os.environ.get("PT_GRADE_TEST_LABS", "2,4").split(",")
         if "2" in labs:
             lab2(subs, out, work)
