@@ -26,11 +26,14 @@ bool hit_box(Ray ray, vec3 inv_dir, vec3 lo, vec3 hi, float t_max) {
 // hit_triangle(), with the brute force's tie rule kept in any order: of two hits at the
 // same distance the lower index wins. hit_triangle() keeps `best` on an equal t, which in
 // index order is the lower index; the BVH may test the lower index later, so it is given
-// the next float above best.t as its bound (t < next(best.t) is t <= best.t).
+// the next float above best.t as its bound (t < next(best.t) is t <= best.t). One call of
+// hit_triangle() for both cases: as two calls, neighbouring rays that took different
+// branches ran both tests on lavapipe (docs/acceleration.md, "Measured").
 Hit hit_triangle_tie(Ray ray, RayShear rs, uint index, Hit best) {
-  if (best.kind != kPrimTriangle || index > best.prim) return hit_triangle(ray, rs, index, best);
   Hit bound = best;
-  bound.t = intBitsToFloat(floatBitsToInt(best.t) + 1);  // best.t > 0 and finite here
+  if (best.kind == kPrimTriangle && index < best.prim) {
+    bound.t = intBitsToFloat(floatBitsToInt(best.t) + 1);  // best.t > 0 and finite here
+  }
   Hit found = hit_triangle(ray, rs, index, bound);
   return found.prim == index && found.kind == kPrimTriangle ? found : best;
 }
