@@ -18,15 +18,15 @@ roulette, lab 4's emission rule) is appended to each as it is. Lab 2
   g_crash            a read far out of the materials' bounds        CRASH SIGSEGV
   h_empty/           a folder without lab2.glsl                     COMPILE ERROR no lab2.glsl
   m_NAME             each other known-wrong answer of labs/mutants.h FAIL, not put down to a
-                     (LAB2_MUTANTS below; d_theta_uniform is the     convention
-                     eighth), the renamed reference wrapped to make it
+                     (d_theta_uniform is the eighth), the renamed     convention
+                     reference wrapped to make it
 and grades.csv and grades.xml hold one row and one testcase per submission. Lab 4
 (common/kernel/triangle_light.glsl, emission_rule.glsl):
   a_correct          the reference                                  PASS
   b_pdf_doubled      the sample's pdf twice the right one           FAIL, the mean of 1/pdf among the criteria
   c_pdf_mismatch     triangle_light_pdf twice the sample's pdf      FAIL, the held-back test among them
   m_NAME             each known-wrong answer of labs/mutants.h       FAIL, not put down to a
-                     (LAB4_MUTANTS below)                            convention
+                     (checked against the file's list)               convention
 The mutants of labs 3, 5 and 6, whose builds this test does not make, are graded by mutation
 in the check build only (the lab_mutant_NAME entries of tests/CMakeLists.txt).
 usage: tools/test_grade_lab.py [WORK]   (ctest entry grade_lab; WORK: lab 2's build, and WORK_lab4
@@ -52,15 +52,6 @@ TOOL = os.path.join(HERE, "grade_lab.py")
 TIMEOUT = os.environ.get("PT_GRADE_TEST_TIMEOUT", "90")
 
 
-# The known-wrong answers of labs/mutants.h that the fixtures below write as submissions
-# (m_NAME); lab 2's uniform_theta_uniform is d_theta_uniform. main() checks the lists
-# against mutants.h, so that a mutant added there is not left out here.
-LAB2_MUTANTS = ["uniform_no_radius", "uniform_pdf_one_over_pi", "bounce_printed_factor", "bounce_no_cosine",
-                "bounce_no_pdf", "roulette_times_p", "roulette_unweighted"]
-LAB4_MUTANTS = ["light_no_cos_y", "light_no_distance", "light_no_area", "light_no_pick", "light_pdf_no_pick",
-                "light_both_sides", "light_unfolded_barycentric", "emission_always", "emission_camera_only"]
-
-
 def expect(cond, what, output=""):
     if not cond:
         print("FAILED: " + what)
@@ -68,6 +59,17 @@ def expect(cond, what, output=""):
             print(output)
         sys.exit(1)
     print("ok: " + what)
+
+
+def written_mutants(folder, lab, also=()):
+    """The mutants the fixtures wrote into folder (m_NAME.glsl), checked against lab's in
+    labs/mutants.h (`also`: those written under another name), so that a mutant added there
+    is not left out here."""
+    mine = sorted(f[2:-len(".glsl")] for f in os.listdir(folder) if f.startswith("m_") and f.endswith(".glsl"))
+    listed = re.findall(r'is_mutant\(([0-9]), "([a-z_0-9]+)"\)', open(os.path.join(REPO, "labs", "mutants.h")).read())
+    expect(sorted(set(m for l, m in listed if l == str(lab))) == sorted(mine + list(also)),
+           f"the fixtures write each of lab {lab}'s mutants in labs/mutants.h")
+    return mine
 
 
 def with_wrappers(rel, renames, wrappers):
@@ -257,6 +259,7 @@ def check_lines(lines, expected):
 
 def lab2(subs, out, work):
     lab2_fixtures(subs)
+    mutants = written_mutants(subs, 2, also=["uniform_theta_uniform"])  # that one is d_theta_uniform
     lines = grade(2, subs, out, work, TIMEOUT)
     expected = {
         "a_correct": r"PASS",
@@ -268,7 +271,7 @@ def lab2(subs, out, work):
         "g_crash": r"CRASH SIGSEGV in \".*\"",
         "h_empty": r"COMPILE ERROR no lab2\.glsl in the submission",
     }
-    for mutant in LAB2_MUTANTS:  # each known-wrong answer fails, and not as a convention
+    for mutant in mutants:  # each known-wrong answer fails, and not as a convention
         expected["m_" + mutant] = r"FAIL (?!\(convention\)).* -> .*"
     check_lines(lines, expected)
     rows = list(csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")))
@@ -280,7 +283,7 @@ def lab2(subs, out, work):
     suite = ET.parse(os.path.join(out, "grades.xml")).getroot().find("testsuite")
     cases = {c.get("name"): c for c in suite.iter("testcase")}
     expect(sorted(cases) == sorted(expected) and suite.get("tests") == str(len(expected))
-           and suite.get("failures") == str(2 + len(LAB2_MUTANTS)) and suite.get("errors") == "4",
+           and suite.get("failures") == str(2 + len(mutants)) and suite.get("errors") == "4",
            "grades.xml: one JUnit testcase per submission, a failure for each wrong answer, 4 errors")
     expect(all(cases[n].find("failure") is None and cases[n].find("error") is None for n in ("a_correct", "e_convention"))
            and cases["c_pdf_2pi"].find("failure").get("type") == "FAIL"
@@ -290,12 +293,13 @@ def lab2(subs, out, work):
 def lab4(subs, out, work):
     os.makedirs(subs)
     lab4_fixtures(subs)
+    mutants = written_mutants(subs, 4)
     expected = {
         "a_correct": r"PASS",
         "b_pdf_doubled": r"FAIL .*light sampling: the mean of 1/pdf is the solid angle .* -> .*",
         "c_pdf_mismatch": r"FAIL .*light sampling: triangle_light_pdf is d\^2 / \(cos_y area\) times the pick.* -> .*",
     }
-    for mutant in LAB4_MUTANTS:
+    for mutant in mutants:
         expected["m_" + mutant] = r"FAIL (?!\(convention\)).* -> .*"
     check_lines(grade(4, subs, out, work, "300"), expected)  # no endless loop among them
 
@@ -313,10 +317,6 @@ def main():
             r = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
             expect(r.returncode == 2 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
                    and r.stderr.startswith("grade_lab: "), f"bad usage ({what}) exits 2 with one line", r.stderr)
-        listed = re.findall(r'is_mutant\(([0-9]), "([a-z_0-9]+)"\)', open(os.path.join(REPO, "labs", "mutants.h")).read())
-        for lab, mine in (("2", LAB2_MUTANTS + ["uniform_theta_uniform"]), ("4", LAB4_MUTANTS)):
-            expect(sorted(set(m for l, m in listed if l == lab)) == sorted(mine),
-                   f"the fixtures write each of lab {lab}'s mutants in labs/mutants.h")
         labs = os.environ.get("PT_GRADE_TEST_LABS", "2,4").split(",")
         if "2" in labs:
             lab2(subs, out, work)

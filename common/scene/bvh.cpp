@@ -244,7 +244,7 @@ std::string BvhStats::summary() const {
 Bvh build_bvh(std::span<const Triangle> triangles) {
   if (triangles.size() > kBvhMaxTriangles) {
     throw Error(kExitBadScene, "the scene has " + std::to_string(triangles.size()) + " triangles and the BVH takes at most " +
-                                   std::to_string(kBvhMaxTriangles) + " (2^28); use a coarser mesh");
+                                   std::to_string(kBvhMaxTriangles) + "; use a coarser mesh");
   }
   const auto start = std::chrono::steady_clock::now();
   Bvh bvh = Builder(triangles).build();
