@@ -1,5 +1,5 @@
 // pt_bench's acceleration section (issue 17): rays per second of the nearest-hit search
-// against the triangle count, for the same rays, by the brute force (the article's search,
+// against the triangle count (shadow rays: bounded by their light point), for the same rays, by the brute force (the article's search,
 // Eq. 2, as the CPU kernel compiles it), this project's BVH on the CPU and on the GPU
 // backend (common/kernel/bvh.glsl), and Embree 3 when the build found it; and the BVH's
 // build time and size against Embree's high-quality build. What its parts share.
@@ -39,11 +39,17 @@ std::string accel_scene_name(int level);
 // The pinhole camera of both ray sets: it frames the sphere, the room around it.
 Camera accel_camera();
 
-// A ray set in two arrays (unit directions).
+constexpr float kNoBound = 3.402823466e38f;  // the largest float, intersect.glsl's kInfinity
+
+// A ray set in two arrays (unit directions), and for shadow rays each ray's bound: the
+// search then finds the nearest hit closer than it, as the renderer's occluded() asks
+// (common/kernel/lights.glsl); empty: none, the largest float (intersect.glsl's kInfinity).
 struct RaySet {
   std::vector<glm::vec3> origins;
   std::vector<glm::vec3> dirs;
+  std::vector<float> t_max;
   std::size_t size() const { return origins.size(); }
+  float bound(std::size_t i) const { return t_max.empty() ? kNoBound : t_max[i]; }
 };
 
 // The nearest-hit distance of a ray, +infinity for a miss.
@@ -61,7 +67,8 @@ void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>
 // none), as params.accel tells nearest_triangle(). Set before the threads start.
 void set_cpu_accel(bool bvh);
 // t_out[i] for the rays i = index[k], k in [first, last) (index nullptr: i = k): the
-// distance of the nearest hit as nearest_triangle() finds it, or kMiss. Thread-safe.
+// distance of the nearest hit (closer than the ray's bound) as nearest_triangle() finds it,
+// or kMiss. Thread-safe.
 void trace_cpu(const RaySet& rays, const std::size_t* index, std::size_t first, std::size_t last, float* t_out);
 // size x size camera rays, one through a random point of each pixel, row by row.
 RaySet camera_rays(const Camera& camera, int size, std::uint32_t seed);
@@ -69,6 +76,12 @@ RaySet camera_rays(const Camera& camera, int size, std::uint32_t seed);
 // surface normal on the side the camera ray came from, spawned as the renderer spawns it
 // (common/kernel/spawn.glsl); rays that missed give none.
 RaySet bounce_rays(const RaySet& camera, std::uint32_t seed);
+// From each camera ray's hit, a shadow ray to a uniformly chosen point of the scene's
+// emitting triangles (the room's ceiling light), spawned as the renderer's occluded() spawns
+// it (common/kernel/lights.glsl) and bounded where occluded()'s last stretch before the light
+// point begins: a search for the nearest hit closer than that. Hits whose light point lies
+// behind the surface give none, as light sampling skips them.
+RaySet shadow_rays(const Scene& scene, const RaySet& camera, std::uint32_t seed);
 
 // Embree 3 (accel_embree.cpp): a scene of one triangle mesh, built with
 // RTC_BUILD_QUALITY_HIGH on `threads` threads, traced by rtcIntersect1 one ray at a time.
@@ -87,7 +100,8 @@ class EmbreeScene {
   double build_seconds() const { return build_seconds_; }  // rtcNewScene .. rtcCommitScene
   double commit_seconds() const { return commit_seconds_; }  // rtcCommitScene alone
   std::size_t bytes() const { return bytes_; }  // what the commit allocated and kept
-  // t_out[i] for rays [first, first + n): the nearest hit's distance, or kMiss. Thread-safe.
+  // t_out[i] for rays [first, first + n): the nearest hit's distance (closer than the ray's
+  // bound: rtcIntersect1's tfar), or kMiss. Thread-safe.
   void trace(const RaySet& rays, std::size_t first, std::size_t n, float* t_out) const;
 
  private:

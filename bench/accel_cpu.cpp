@@ -5,6 +5,7 @@
 // walks it, collapsed to 8 children on SIMD lanes, cpu/wide_bvh.h), and the two ray sets:
 // camera rays (common/kernel/camera.glsl) and diffuse bounce rays from their hits, spawned
 // by common/kernel/spawn.glsl.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -44,10 +45,10 @@ namespace {
 
 // The renderer's search for one ray: nearest_triangle() of cpu/triangle_lanes.h, which
 // walks the BVH when params.accel says so and one was bound, else the SIMD brute force.
-kernel::Hit nearest(glm::vec3 origin, glm::vec3 dir) {
+// t_max: the bound of a shadow ray (kernel::kInfinity: none).
+kernel::Hit nearest(glm::vec3 origin, glm::vec3 dir, float t_max = kernel::kInfinity) {
   kernel::Ray ray(origin, dir);
-  return kernel::nearest_triangle(ray, kernel::make_ray_shear(dir),
-                                  kernel::Hit(kernel::kInfinity, 0.0f, 0.0f, 0u, kPrimNone));
+  return kernel::nearest_triangle(ray, kernel::make_ray_shear(dir), kernel::Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone));
 }
 
 }  // namespace
@@ -59,7 +60,7 @@ void set_cpu_accel(bool bvh) {
 void trace_cpu(const RaySet& rays, const std::size_t* index, std::size_t first, std::size_t last, float* t_out) {
   for (std::size_t k = first; k < last; k++) {
     const std::size_t i = index ? index[k] : k;
-    kernel::Hit h = nearest(rays.origins[i], rays.dirs[i]);
+    kernel::Hit h = nearest(rays.origins[i], rays.dirs[i], rays.bound(i));
     t_out[i] = h.kind == kPrimNone ? kMiss : h.t;
   }
 }
@@ -101,6 +102,47 @@ RaySet bounce_rays(const RaySet& camera, std::uint32_t seed) {
                                          std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
     kernel::Ray out = kernel::spawn_ray(s.p, s.n, dir);
     r.origins.push_back(out.origin), r.dirs.push_back(out.dir);
+  }
+  return r;
+}
+
+RaySet shadow_rays(const Scene& scene, const RaySet& camera, std::uint32_t seed) {
+  // The emitting triangles and their cumulative areas, to pick a point uniformly by area.
+  std::vector<std::size_t> lights;
+  std::vector<double> cumulative;
+  double total = 0.0;
+  for (std::size_t t = 0; t < scene.triangles.size(); t++) {
+    const Triangle& tri = scene.triangles[t];
+    if (glm::dot(scene.materials[tri.material].emission, glm::vec3(1.0f)) <= 0.0f) continue;
+    total += 0.5 * double(glm::length(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0)));
+    lights.push_back(t), cumulative.push_back(total);
+  }
+  RaySet r;
+  if (lights.empty()) return r;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  kernel::params.accel = kernel::bvh_nodes ? kAccelBvh : kAccelNone;
+  for (std::size_t i = 0; i < camera.size(); i++) {
+    const float u0 = u(rng), u1 = u(rng), u2 = u(rng);  // drawn for every ray: the same numbers per pixel
+    kernel::Ray in(camera.origins[i], camera.dirs[i]);
+    kernel::Hit hit = nearest(in.origin, in.dir);
+    if (hit.kind == kPrimNone) continue;
+    kernel::Surface s = kernel::surface_at(in, hit);
+    const glm::vec3 n = s.front ? s.n : -s.n;  // the side the camera ray came from
+    const std::size_t pick = std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), double(u0) * total) -
+                                         cumulative.begin());
+    const Triangle& light = scene.triangles[lights[std::min(pick, lights.size() - 1)]];
+    const float a = std::sqrt(u1);  // a uniform point of the triangle
+    const glm::vec3 y = (1.0f - a) * light.p0 + a * (1.0f - u2) * light.p1 + a * u2 * light.p2;
+    if (glm::dot(y - s.p, n) <= 0.0f) continue;  // behind the surface: light sampling skips it
+    // As occluded() spawns it: off the surface, aimed at the light point itself; bounded
+    // where occluded()'s last stretch begins (1e-4 of the length short of the light point), so
+    // that no method counts the light's own surface, which Embree's inclusive tfar would.
+    kernel::Ray out = kernel::spawn_ray(s.p, s.n, glm::normalize(y - s.p));
+    const glm::vec3 to_light = y - out.origin;
+    const float length_to_light = glm::length(to_light);
+    r.origins.push_back(out.origin), r.dirs.push_back(to_light / length_to_light);
+    r.t_max.push_back(length_to_light * (1.0f - 1e-4f));
   }
   return r;
 }

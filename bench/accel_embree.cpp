@@ -101,7 +101,7 @@ void EmbreeScene::trace(const RaySet& rays, std::size_t first, std::size_t n, fl
     const glm::vec3 o = rays.origins[i], d = rays.dirs[i];
     rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z, rh.ray.tnear = 0.0f;
     rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z, rh.ray.time = 0.0f;
-    rh.ray.tfar = kMiss, rh.ray.mask = ~0u, rh.ray.id = 0u, rh.ray.flags = 0u;
+    rh.ray.tfar = rays.bound(i), rh.ray.mask = ~0u, rh.ray.id = 0u, rh.ray.flags = 0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
     t_out[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kMiss : rh.ray.tfar;

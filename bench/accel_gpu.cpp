@@ -1,5 +1,5 @@
 // pt_bench's acceleration section on the GPU backend (accel.h): the renderer's nearest-hit
-// search through the BVH, common/kernel/bvh.glsl as gpu/triangle_search.glsl calls it,
+// search through the BVH (bounded for shadow rays), common/kernel/bvh.glsl as gpu/triangle_search.glsl calls it,
 // over a buffer of rays, one invocation per ray (intersect_raycast.comp with params.accel =
 // kAccelBvh and the BVH at bindings 9 and 10, as gpu_backend.cpp binds it for a render).
 // On this machine the device is lavapipe, which runs on the same CPU cores.
@@ -46,10 +46,11 @@ void GpuBvhTracer::set_scene(const Scene& scene, const Bvh& bvh, const RaySet& r
     if (data && bytes) m.buffers.back().write(data, bytes);
     return m.buffers.back();
   };
-  // The rays as pairs of vec4 (origin, direction) in binding 3, as the kernel reads them.
-  std::vector<glm::vec4> packed(3 * count, glm::vec4(0.0f));  // origin, direction, unused (speed_gpu.cpp)
+  // The rays as vec4 triples (origin, direction and bound, unused) in binding 3, as the
+  // kernel reads them: a shadow ray's bound is its search's t_max, the others' infinity.
+  std::vector<glm::vec4> packed(3 * count, glm::vec4(0.0f));
   for (std::size_t i = 0; i < count; i++) {
-    packed[3 * i] = glm::vec4(rays.origins[i], 1.0f), packed[3 * i + 1] = glm::vec4(rays.dirs[i], 0.0f);
+    packed[3 * i] = glm::vec4(rays.origins[i], 1.0f), packed[3 * i + 1] = glm::vec4(rays.dirs[i], rays.bound(i));
   }
   gpu::Buffer& triangles = storage(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
   gpu::Buffer& ray_buffer = storage(packed.data(), packed.size() * sizeof(glm::vec4));
@@ -98,8 +99,7 @@ std::vector<float> GpuBvhTracer::distances() const {
   std::vector<glm::vec4> hits(impl_->ray_count);
   impl_->output->read(hits.data(), hits.size() * sizeof(glm::vec4));
   std::vector<float> t(hits.size());
-  // A miss leaves t at kInfinity (intersect.glsl: the largest float) and prim kPrimNone;
-  // the kernel writes t only, so a miss is a t that large.
+  // The kernel writes kInfinity (intersect.glsl: the largest float) for a miss.
   for (std::size_t i = 0; i < hits.size(); i++) t[i] = hits[i].x >= 3.4e38f ? kMiss : hits[i].x;
   return t;
 }

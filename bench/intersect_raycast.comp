@@ -4,7 +4,8 @@
 // Comparable with the CPU row "intersect_scene (renderer)" and with the naive loop
 // (naive_raycast.comp). Article: the raycasting step (Eq. 2), its closest-hit search. The
 // rays sit in binding 3 (gpu/kernel_bindings.glsl's point_lights: a position and an intensity 16 bytes
-// apart in a 48-byte entry, read here as origin and direction); params.triangle_count is the triangle count,
+// apart in a 48-byte entry, read here as origin and direction, and cos_outer after the intensity as
+// the bound of the search: kInfinity, or a shadow ray's t_max in the accel section); params.triangle_count is the triangle count,
 // params.width the ray count. With params.accel = kAccelBvh and the BVH at bindings 9 and 10
 // it walks common/kernel/bvh.glsl instead (the accel section, accel_gpu.cpp). The build's
 // kernel_definitions.glsl defines what the kernel files declare (cmake/Labs.cmake).
@@ -23,6 +24,6 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= params.width) return;
   Ray ray = Ray(point_lights[i].position, point_lights[i].intensity);
-  Hit hit = intersect_scene(ray, kInfinity);
-  pass_output[i] = vec4(hit.t, hit.b1, hit.b2, float(hit.prim));
+  Hit hit = intersect_scene(ray, point_lights[i].cos_outer);  // the ray's bound (a shadow ray's t_max) or kInfinity
+  pass_output[i] = vec4(hit.kind == kPrimNone ? kInfinity : hit.t, hit.b1, hit.b2, float(hit.prim));
 }

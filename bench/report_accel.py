@@ -1,6 +1,6 @@
 """pt_bench's report, the acceleration section (issue 17), for bench/report.py: from
 accel.csv, accel_build.csv and accel_run.txt (pt_bench --section accel), the log-log plot
-of rays per second against the triangle count (accel_rays.png), the table of every method
+of rays per second against the triangle count for camera, bounce and shadow rays (accel_rays.png), the table of every method
 and count, the build table, issue 17's targets with the measured ratios and whether each
 is met, and the check that the methods find the same hits. Hand-written findings come from
 accel_notes.md in the same folder."""
@@ -14,6 +14,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 ACCEL_METHODS = OrderedDict([("brute_cpu", "brute force (CPU, --accel none)"), ("bvh_cpu", "BVH (CPU)"),
                              ("bvh_gpu", "BVH (GPU backend)"), ("embree", "Embree 3, rtcIntersect1")])
+RAY_SETS = ("camera", "bounce", "shadow")
+TARGET_SETS = ("camera", "bounce")  # the ray sets of issue 17's targets
 ACCEL_TARGET_EMBREE = 0.5   # CPU BVH >= 0.5x Embree on the ~1M-triangle mesh
 ACCEL_TARGET_GPU = 0.5      # GPU (lavapipe) BVH >= 0.5x CPU BVH
 ACCEL_TARGET_BUILD = 2.0    # our load + build <= 2x Embree's high-quality build
@@ -36,8 +38,8 @@ def num(v):
 
 
 def plot_accel(rows, out_dir):
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
-    for ax, rays in zip(axes, ("camera", "bounce")):
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2), sharey=True)
+    for ax, rays in zip(axes, RAY_SETS):
         for method, label in ACCEL_METHODS.items():
             pts = [(int(r["triangles"]), num(r["mrays_per_s"])) for r in rows
                    if r["rays"] == rays and r["method"] == method and num(r["mrays_per_s"])]
@@ -88,11 +90,15 @@ def accel_section(rows, builds, run, out_dir):
           "with an icosphere in place of the two boxes (bench/accel_scene.cpp, placed as bench/make_sphere_mesh.py "
           "places it). Camera rays: %s, from a pinhole camera that frames the sphere (it fills 90%% of the image "
           "height, the room around it). Bounce rays: one from each camera ray's hit, cosine-distributed about the "
-          "normal and spawned as the renderer spawns them (common/kernel/spawn.glsl). Every method traces the same "
+          "normal and spawned as the renderer spawns them (common/kernel/spawn.glsl). Shadow rays: from each camera "
+          "ray's hit to a uniform point of the ceiling light (none where the light point lies behind the surface), "
+          "spawned as stages 4 and 5 spawn them (common/kernel/lights.glsl, occluded()) and searched as they search: "
+          "the nearest hit closer than a bound, here where occluded()'s last stretch before the light point begins "
+          "(so that no method counts the light's own surface). Every method traces the same "
           "rays: the brute force is the renderer's `--accel none` search (cpu/triangle_lanes.h), the BVH is "
           "the one tree of common/scene/bvh.h: on the CPU as the CPU backend walks it, collapsed to 8 children and "
           "leaf blocks of up to 8 triangles on SIMD lanes (cpu/wide_bvh.h), on the GPU backend common/kernel/bvh.glsl's "
-          "binary walk run by intersect_raycast.comp; Embree is `rtcIntersect1` one ray at a time on a high-quality build. The CPU methods "
+          "binary walk run by intersect_raycast.comp; Embree is `rtcIntersect1` one ray at a time on a high-quality build (tfar the shadow rays' bound). The CPU methods "
           "run on all cores, and the methods take turns (at least %s s and 3 passes each) so that they share the same load. "
           "\u2020: the brute force timed on an even sample of the rays (accel.csv says how many); skipped: even "
           "2048 rays would have taken longer than the limit." % (
@@ -101,7 +107,7 @@ def accel_section(rows, builds, run, out_dir):
           "Million rays per second by the wall clock:", "",
           "| rays | triangles | brute force | BVH, CPU | BVH, GPU | Embree 3 | BVH CPU / Embree | BVH GPU / BVH CPU |",
           "|---|---|---|---|---|---|---|---|"]
-    for rays in ("camera", "bounce"):
+    for rays in RAY_SETS:
         for n in counts:
             md.append("| %s | %d | %s | %s | %s | %s | %s | %s |" % (
                 rays, n, cell(rays, n, "brute_cpu"), cell(rays, n, "bvh_cpu"), cell(rays, n, "bvh_gpu"),
@@ -131,14 +137,14 @@ def accel_section(rows, builds, run, out_dir):
 
     md += ["Targets of issue 17 against this run (ratios by the wall clock; by CPU time in parentheses):", "",
            "| target | measured | |", "|---|---|---|"]
-    for rays in ("camera", "bounce"):
+    for rays in TARGET_SETS:
         e, c = rate(rays, top, "embree"), rate(rays, top, "bvh_cpu")
         ec, cc = rate(rays, top, "embree", "mrays_per_cpu_s"), rate(rays, top, "bvh_cpu", "mrays_per_cpu_s")
         v = c / e if c and e else None
         md.append("| CPU BVH \u2265 %.1f\u00d7 Embree, %s rays, %d triangles | %s (%s) | %s |" % (
             ACCEL_TARGET_EMBREE, rays, top, ratio(c, e), ratio(cc, ec),
             met(v, ACCEL_TARGET_EMBREE, True, cc / ec if cc and ec else None)))
-    for rays in ("camera", "bounce"):
+    for rays in TARGET_SETS:
         g, c = rate(rays, top, "bvh_gpu"), rate(rays, top, "bvh_cpu")
         gc, cc = rate(rays, top, "bvh_gpu", "mrays_per_cpu_s"), rate(rays, top, "bvh_cpu", "mrays_per_cpu_s")
         all_ratios = [rate(rays, n, "bvh_gpu") / rate(rays, n, "bvh_cpu") for n in counts
@@ -159,9 +165,16 @@ def accel_section(rows, builds, run, out_dir):
                   "%.3f" % e if e else "-", ratio(o, e), met(o / e if o and e else None, ACCEL_TARGET_BUILD, False)))
     md.append("")
 
+    # The shadow rays, which stages 4 and 5 trace as many as their bounce rays: the same ratios,
+    # not among the issue's targets.
+    g, c, e = rate("shadow", top, "bvh_gpu"), rate("shadow", top, "bvh_cpu"), rate("shadow", top, "embree")
+    if c:
+        md += ["Shadow rays (not among the issue's targets), %d triangles: CPU BVH %s of Embree, GPU backend %s of "
+               "the CPU BVH." % (top, ratio(c, e), ratio(g, c)), ""]
+
     # Sanity: the same hits. Each method against the CPU BVH on the same rays.
     sanity = []
-    for rays in ("camera", "bounce"):
+    for rays in RAY_SETS:
         ref = by.get((rays, top, "bvh_cpu"))
         if not ref or not ref["hits"]:
             continue
@@ -174,7 +187,7 @@ def accel_section(rows, builds, run, out_dir):
         sanity.append("%s rays: %s" % (rays, "; ".join(parts)))
     # The verdict: Embree's hit count within 1e-4 of the rays, its mean t within 1e-5 relative.
     agree = []
-    for rays in ("camera", "bounce"):
+    for rays in RAY_SETS:
         ref, emb = by.get((rays, top, "bvh_cpu")), by.get((rays, top, "embree"))
         if ref and emb and ref["hits"] and emb["hits"]:
             ok = (abs(int(ref["hits"]) - int(emb["hits"])) <= 1e-4 * int(ref["rays_checked"]) and
