@@ -74,8 +74,9 @@ int run(int argc, char** argv) {
   pt::CompareSettings settings;
   CLI::App app(
       "pt_compare: whether two renders of one scene agree within their noise, from the per-pixel variance "
-      "that a stage's --out .exr carries (docs/film.md). Exit 0: consistent, 1: not consistent, 2: a bad "
-      "option, 3: an input that cannot be compared (not a stage's .exr, under 2 spp, another size)",
+      "that a stage's --out .exr carries, and under the default sampler from the halves of its samples where "
+      "both renders know them (docs/film.md). Exit 0: consistent, 1: not consistent, 2: a bad option, 3: an "
+      "input that cannot be compared (not a stage's .exr, under 2 spp, another size)",
       "pt_compare");
   app.add_option("--alpha", settings.alpha,
                  "the significance level: the chance that two unbiased renders are called not consistent "
@@ -145,6 +146,10 @@ int run(int argc, char** argv) {
   std::printf("threshold: |t|, |z| > %.3g (alpha %g, Bonferroni over %d tests: %zu regions of %dx%d pixels and the "
               "mean)\n",
               c.threshold, settings.alpha, c.tests, c.regions.size(), c.region, c.region);
+  if (ref.film.has_halves() && test.film.has_halves()) {
+    std::printf("variance: from the halves of the samples in %d of %zu regions%s, elsewhere from the samples' "
+                "variance (docs/film.md)\n", c.halves_regions, c.regions.size(), c.mean_from_halves ? " and the mean" : "");
+  }
   if (zmap) {
     pt::ImageMetadata meta;
     meta.stage = "pt_compare";

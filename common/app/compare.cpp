@@ -72,6 +72,15 @@ void check_comparable(const Film& ref, const std::string& ref_name, const Film& 
   }
 }
 
+double halves_upper_bound(double sum, double sum_of_squares) {
+  if (!(sum > 0.0)) return std::numeric_limits<double>::infinity();  // halves that agree exactly tell nothing
+  const double nu = sum * sum / sum_of_squares;  // Satterthwaite's degrees of freedom
+  const double c = 2.0 / (9.0 * nu);
+  const double root = 1.0 - c - kHalvesBoundZ * std::sqrt(c);  // Wilson-Hilferty, the lower quantile
+  if (root <= 0.0) return std::numeric_limits<double>::infinity();
+  return sum / (root * root * root);
+}
+
 double two_sided_p(double z) { return std::erfc(std::fabs(z) / std::sqrt(2.0)); }
 
 double two_sided_threshold(double p) {
@@ -95,8 +104,11 @@ Comparison compare_films(const Film& ref, const Film& test, const CompareSetting
   Comparison c;
   c.width = ref.width(), c.height = ref.height();
   const std::size_t pixels = std::size_t(c.width) * std::size_t(c.height);
-  // Per pixel: the difference, each render's variance of one sample, the rounding allowance.
+  // Per pixel: the difference, each render's variance of one sample, the rounding allowance;
+  // where both renders know the halves of their samples, each one's halves' variance of its mean.
   std::vector<double> d(pixels), var_a(pixels), var_b(pixels), rounding(pixels);
+  const bool halves = ref.has_halves() && test.has_halves();
+  std::vector<double> half_a(halves ? pixels : 0), half_b(halves ? pixels : 0);
   // The variance of a mean of spp samples of each render, per unit of one-sample variance.
   const double per_sample = 1.0 / double(ref.spp()) + 1.0 / double(test.spp());
   c.pixel_z.assign(pixels, 0.0f);
@@ -107,6 +119,7 @@ Comparison compare_films(const Film& ref, const Film& test, const CompareSetting
       const double r = kRoundingAllowance * std::max(std::fabs(a), std::fabs(b));
       d[i] = b - a;
       var_a[i] = ref.sample_variance(x, y), var_b[i] = test.sample_variance(x, y);
+      if (halves) half_a[i] = ref.halves_variance(x, y), half_b[i] = test.halves_variance(x, y);
       rounding[i] = r * r;
       const double v = std::max(var_a[i], var_b[i]) * per_sample + rounding[i];
       c.pixel_z[i] = v > 0.0 ? float(d[i] / std::sqrt(v)) : 0.0f;
@@ -121,34 +134,79 @@ Comparison compare_films(const Film& ref, const Film& test, const CompareSetting
   };
 
   // The regions; the variance of a region's summed difference takes the larger of the two
-  // renders' one-sample variances (summed over its pixels), see compare.h. The image's
-  // difference is the sum of the regions', its variance the sum of theirs.
+  // renders' one-sample variances (summed over its pixels), or where both renders know their
+  // halves and it is smaller, the halves' upper bound, see compare.h. The image's difference
+  // is the sum of the regions', its variance the sum of theirs, or the halves' bound over the
+  // whole image where that is smaller.
   const int r = c.region = settings.region;
-  double d_sum = 0.0, v_sum = 0.0;
+  const double n_a = double(ref.spp()), n_b = double(test.spp());
+  // What a block of pixels sums: the differences, each render's one-sample variances, the
+  // rounding allowance, each render's halves (their sum and sum of squares) and its largest
+  // one-sample variance.
+  struct Sums {
+    double d = 0.0, s_a = 0.0, s_b = 0.0, rounding = 0.0, h_a = 0.0, h_a2 = 0.0, h_b = 0.0, h_b2 = 0.0;
+    double top_a = 0.0, top_b = 0.0;
+    void add(const Sums& o) {
+      d += o.d, s_a += o.s_a, s_b += o.s_b, rounding += o.rounding;
+      h_a += o.h_a, h_a2 += o.h_a2, h_b += o.h_b, h_b2 += o.h_b2;
+      top_a = std::max(top_a, o.top_a), top_b = std::max(top_b, o.top_b);
+    }
+  };
+  // The variance of the block's summed difference from the halves alone (infinity where they
+  // cannot bound it): each render's bound, no smaller than the other render's scaled to this
+  // one's spp (the guard of the larger variance, compare.h); and each render's figure, the
+  // smaller of that and its share of the larger one-sample variance.
+  const double inf = std::numeric_limits<double>::infinity();
+  auto halves_bounds = [&](const Sums& k, double& g_a, double& g_b) {
+    g_a = g_b = inf;
+    if (!halves) return;
+    // Not where one pixel holds more than kHalvesLargestShare of a render's sample variance:
+    // its error may then be most of the block's, which its one degree of freedom cannot bound.
+    const double u_a = k.top_a <= kHalvesLargestShare * k.s_a ? halves_upper_bound(k.h_a, k.h_a2) : inf;
+    const double u_b = k.top_b <= kHalvesLargestShare * k.s_b ? halves_upper_bound(k.h_b, k.h_b2) : inf;
+    g_a = std::max(u_a, u_b * n_b / n_a), g_b = std::max(u_b, u_a * n_a / n_b);
+  };
+  Sums image;
+  double v_sum = 0.0;
   for (int y0 = 0; y0 < c.height; y0 += r) {
     for (int x0 = 0; x0 < c.width; x0 += r) {
       RegionTest t;
       t.x0 = x0, t.y0 = y0, t.x1 = std::min(x0 + r, c.width), t.y1 = std::min(y0 + r, c.height);
-      double rd = 0.0, ra = 0.0, sa = 0.0, sb = 0.0, sr = 0.0;
+      Sums k;
+      double ra = 0.0;
       for (int y = t.y0; y < t.y1; y++) {
         for (int x = t.x0; x < t.x1; x++) {
           const std::size_t i = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
-          rd += d[i], sa += var_a[i], sb += var_b[i], sr += rounding[i];
+          k.d += d[i], k.s_a += var_a[i], k.s_b += var_b[i], k.rounding += rounding[i];
           ra += luminance(ref.mean(x, y));
+          if (halves) {
+            k.h_a += half_a[i], k.h_a2 += half_a[i] * half_a[i];
+            k.h_b += half_b[i], k.h_b2 += half_b[i] * half_b[i];
+            k.top_a = std::max(k.top_a, var_a[i]), k.top_b = std::max(k.top_b, var_b[i]);
+          }
         }
       }
-      const double rv = std::max(sa, sb) * per_sample + sr;
+      const double s_max = std::max(k.s_a, k.s_b);
+      double v_a = s_max / n_a, v_b = s_max / n_b, g_a, g_b;
+      halves_bounds(k, g_a, g_b);
+      if (g_a < v_a || g_b < v_b) t.from_halves = true, c.halves_regions++;
+      const double rv = std::min(v_a, g_a) + std::min(v_b, g_b) + k.rounding;
       const double count = double(t.x1 - t.x0) * double(t.y1 - t.y0);
       t.ref_mean = ra / count;
-      t.difference = rd / count;
+      t.difference = k.d / count;
       t.standard_error = std::sqrt(rv) / count;
-      t.z = z_of(rd, rv);
+      t.z = z_of(k.d, rv);
       c.regions.push_back(t);
-      d_sum += rd, v_sum += rv;
+      image.add(k);
+      v_sum += rv;
     }
   }
-  c.mean_standard_error = std::sqrt(v_sum) / n;
-  c.mean_t = z_of(d_sum, v_sum);
+  double g_a, g_b;
+  halves_bounds(image, g_a, g_b);
+  const double v_image = std::min(v_sum, g_a + g_b + image.rounding);
+  c.mean_from_halves = v_image < v_sum;
+  c.mean_standard_error = std::sqrt(v_image) / n;
+  c.mean_t = z_of(image.d, v_image);
   c.tests = int(c.regions.size()) + 1;
   c.threshold = two_sided_threshold(settings.alpha / double(c.tests));
   double most = std::fabs(c.mean_t);

@@ -18,16 +18,27 @@
 //     variance estimate is then far too small, and with it a Welch-style z (each render's
 //     own variance) called a 64-spp stage2 render inconsistent with a 2048-spp one in 1
 //     comparison of 3 (docs/film.md);
-//   - the image mean: t = sum of the regions' differences / sqrt(sum of their V);
+//   - the image mean: t = sum of the regions' differences / sqrt(sum of their V), or of the
+//     halves' bound over the whole image where that is smaller (below);
 //   - a pixel's own z (the z-map) is not tested: with few samples its variance estimate is
 //     itself noisy and heavy-tailed, while a region's rests on region^2 x spp samples;
 //   - every t and z is compared with the normal distribution, two-sided, at the
 //     Bonferroni-corrected level alpha / m, m = the number of regions + 1 (the mean): the
 //     probability that two unbiased renders are called inconsistent is then at most alpha
 //     (up to the normal approximation; docs/film.md gives the false alarms measured).
-// A render whose sampler is stratified (--sampler sobol) has a smaller error than the
-// variance of its samples says: the test is then conservative (fewer false alarms, and
-// less power), never more eager. What it cannot see: a bias that keeps luminance (a shift
+//   - under randomised QMC (--sampler sobol, the default) a pixel's sample variance over spp
+//     overstates the error of its mean, up to hundreds of times on smooth images
+//     (docs/sampling.md): the test would be conservative (fewer false alarms, and less
+//     power). Where both renders know the halves of their samples (Film::has_halves, kept in
+//     the .exr), a region's variance of each render's summed mean is also estimated from
+//     them, sum of ((A - B) / 2)^2 over its pixels (an upper bound in expectation under RQMC,
+//     with one degree of freedom per pixel), taken as a 99% upper confidence bound (chi-square
+//     with Satterthwaite's degrees of freedom estimated cautiously, halves_upper_bound; not
+//     where one pixel dominates the region, kHalvesLargestShare) and no smaller than the other
+//     render's bound scaled to this one's spp; each render's variance is the smaller of that and
+//     its share of the sample variance's figure above. So the halves sharpen the test, and
+//     the confidence bound keeps its false alarms at those of the sample variance's figure
+//     (measured in docs/film.md). What it cannot see: a bias that keeps luminance (a shift
 // of hue), and a bias smaller than the noise of the renders given.
 #pragma once
 
@@ -50,6 +61,27 @@ FilmPart read_comparable(const std::string& path);
 // noiseless pixels (all samples equal) from two backends still agree.
 inline constexpr double kRoundingAllowance = 1e-5;
 
+// The halves' bound: a variance estimated as `sum` of independent one-degree-of-freedom terms
+// whose squares sum to sum_of_squares, raised to its upper confidence bound at the normal
+// quantile kHalvesBoundZ (2.326: 99%): sum x nu / q, q the chi-square quantile of nu =
+// sum^2 / sum_of_squares degrees of freedom by Wilson and Hilferty's approximation; infinity
+// where nu is too small for one (about 1.6) and for a sum of 0 (halves that agree exactly in
+// every pixel say nothing of the error: the sample variance decides). That nu is Satterthwaite's
+// with each term's variance taken from the term itself: about a third of the terms' count
+// when they are alike, 1 when one carries the sum, never more than their true degrees of
+// freedom in expectation, so the bound is cautious (about 2.4 times the sum for 64 alike
+// terms; tests/common/app/test_compare.cpp).
+inline constexpr double kHalvesBoundZ = 2.326;
+double halves_upper_bound(double sum, double sum_of_squares);
+// A region's halves are used only where no pixel holds more than this share of a render's
+// summed sample variance there. One pixel whose error is most of the region's has one degree
+// of freedom in the halves, and a small draw of it would hide that error (the bound above
+// counts it as one term among many); such a pixel (a light's edge, a firefly) shows a large
+// sample variance too. What this cannot see: a pixel whose error is most of the region's while
+// its sample variance is no larger than its neighbours', i.e. the sampler gains on every
+// pixel but that one.
+inline constexpr double kHalvesLargestShare = 0.125;
+
 struct CompareSettings {
   double alpha = 0.01;  // the false-alarm rate of the whole comparison (0 < alpha < 1)
   int region = 8;       // the side of a region in pixels (>= 1)
@@ -62,6 +94,7 @@ struct RegionTest {
   double difference = 0.0;      // the mean over its pixels of L_test - L_ref
   double standard_error = 0.0;  // of that difference
   double z = 0.0;               // difference / standard_error (0 when both are 0)
+  bool from_halves = false;     // its variance took the halves' bound of a render
 };
 
 struct Comparison {
@@ -74,6 +107,8 @@ struct Comparison {
   std::size_t worst = 0;            // the region of the largest |z|
   int tests = 0;                    // regions + 1: the Bonferroni correction's m
   double threshold = 0.0;           // a test fails when |z| > threshold
+  int halves_regions = 0;           // regions whose variance took the halves' bound
+  bool mean_from_halves = false;    // the mean's variance took the halves' bound over the image
   bool mean_failed = false;
   int failed_regions = 0;
   bool consistent = true;

@@ -16,6 +16,7 @@
 namespace pt {
 
 const char* const kFilmSumChannels[4] = {"R", "G", "B", "YY"};
+const char* const kFilmHalfChannel = "Yhalf";
 
 namespace {
 
@@ -130,6 +131,22 @@ FilmPart film_part_of(const ExrImage& image, const std::string& path) {
   }
   part.film = Film(image.width, image.height);
   part.film.restore(spp, std::move(sums));
+  // The first half's luminance sums, where the render knew its halves (optional: without them,
+  // or with an attribute that does not name the first half of this part's one range, the film
+  // simply does not know them).
+  const int hi = image.channel(std::string("film.") + kFilmHalfChannel + ".hi");
+  const int lo = image.channel(std::string("film.") + kFilmHalfChannel + ".lo");
+  const std::string halves = image.attribute("pt:halves");
+  if (hi >= 0 && lo >= 0 && image.is_uint[std::size_t(hi)] && image.is_uint[std::size_t(lo)] &&
+      part.ranges.size() == 1 && halves == format_ranges({{part.ranges.front().first, spp / 2}})) {
+    std::vector<double> luminance(pixels);
+    for (std::size_t p = 0; p < pixels; p++) {
+      const std::uint32_t* v = &image.pixels[p * n];
+      const std::uint64_t bits = (std::uint64_t(v[hi]) << 32) | v[lo];
+      std::memcpy(&luminance[p], &bits, sizeof(double));
+    }
+    part.film.restore_halves(spp / 2, std::move(luminance));
+  }
   return part;
 }
 
@@ -197,7 +214,8 @@ FilmPart merge_film_parts(std::vector<FilmPart> parts, std::vector<std::string>&
   bool follow = merged.size() == 1 && ref.id.options.find("sampler sobol") != std::string::npos;
   for (const FilmPart& p : parts) follow = follow && p.ranges.size() == 1;
   FilmPart out = parts[order[0]];
-  if (follow) out.film.track_halves(out.ranges.front().first);
+  // (One part keeps the halves it was read with.)
+  if (follow && parts.size() > 1) out.film.track_halves(out.ranges.front().first);
   for (std::size_t k = 1; k < order.size(); k++) out.film.merge(parts[order[k]].film, follow);
   out.ranges = merged;
   out.path.clear();

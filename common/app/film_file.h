@@ -51,8 +51,11 @@ struct FilmPart {
 
 // The EXR's channels: R, G, B (the mean radiance), Y.variance (the estimated variance of the
 // pixel's mean luminance), then film.<S>.hi and film.<S>.lo for S in R, G, B, YY: the two
-// 32-bit halves of each double sum, so a merge restores the sums bit for bit.
+// 32-bit halves of each double sum, so a merge restores the sums bit for bit. A film that knows
+// the halves of its samples (Film::has_halves) adds film.Yhalf.hi and .lo, the first half's
+// luminance sums, and the attribute pt:halves, that half's range (FIRST:COUNT).
 extern const char* const kFilmSumChannels[4];
+extern const char* const kFilmHalfChannel;
 
 // Reads a part, or throws pt::Error(kExitBadScene) naming the file and what is missing.
 FilmPart read_film_part(const std::string& path);

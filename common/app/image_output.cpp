@@ -83,11 +83,13 @@ std::uint8_t encode_srgb8(float linear, float exposure) {
 namespace {
 
 // An .exr's channels: R, G, B, and for a film (film_file.h) the variance of each pixel's
-// mean luminance, then the two 32-bit halves of each double sum.
+// mean luminance, then the two 32-bit halves of each double sum, and where the film knows the
+// halves of its samples (Film::has_halves) the first half's luminance sums the same way.
 ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const ImageMetadata& meta) {
   ExrImage image;
   image.width = width, image.height = height;
   image.channels = {"R", "G", "B"};
+  const bool halves = meta.film && meta.film->has_halves() && meta.ranges.size() == 1;
   if (meta.film) {
     image.channels.push_back("Y.variance");
     for (const char* name : kFilmSumChannels) {
@@ -96,6 +98,10 @@ ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const I
     image.text.emplace_back("pt:scene_hash", meta.identity.scene_hash);  // what the merge compares
     image.text.emplace_back("pt:options", meta.identity.options);
     image.text.emplace_back("pt:samples", format_ranges(meta.ranges));
+  }
+  if (halves) {
+    for (const char* half : {".hi", ".lo"}) image.channels.push_back(std::string("film.") + kFilmHalfChannel + half);
+    image.text.emplace_back("pt:halves", format_ranges({{meta.ranges.front().first, meta.film->first_half_spp()}}));
   }
   const std::size_t n = image.channels.size();
   image.is_uint.assign(n, false);
@@ -115,6 +121,12 @@ ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const I
       std::memcpy(&bits, &film.sums()[4 * p + std::size_t(k)], sizeof bits);
       o[4 + 2 * k] = std::uint32_t(bits >> 32);
       o[5 + 2 * k] = std::uint32_t(bits);
+    }
+    if (halves) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &film.first_half_luminance()[p], sizeof bits);
+      o[12] = std::uint32_t(bits >> 32);
+      o[13] = std::uint32_t(bits);
     }
   }
   return image;

@@ -48,6 +48,23 @@ void Film::track_halves(std::uint64_t first_sample) {
   keep_half();  // the samples it already holds (a resumed render, a merge's first part)
 }
 
+std::uint64_t Film::first_half_spp() const {
+  const Snapshot* half = halves();
+  return half ? half->spp : 0;
+}
+
+const std::vector<double>& Film::first_half_luminance() const {
+  static const std::vector<double> none;
+  const Snapshot* half = halves();
+  return half ? half->luminance : none;
+}
+
+void Film::restore_halves(std::uint64_t half_spp, std::vector<double> luminance) {
+  if (half_spp == 0 || 2 * half_spp != spp_ || luminance.size() != std::size_t(width_) * std::size_t(height_)) return;
+  forget_halves();
+  snapshots_[0] = Snapshot{half_spp, std::move(luminance)};
+}
+
 void Film::forget_halves() {
   for (Snapshot& s : snapshots_) s = Snapshot{};
 }
@@ -128,15 +145,20 @@ double Film::sample_variance_sum() const {
   return variance_sum;
 }
 
+double Film::halves_variance(int x, int y) const {
+  const Snapshot* half = halves();
+  if (half == nullptr) return 0.0;
+  const std::size_t i = std::size_t(y) * std::size_t(width_) + std::size_t(x);
+  const double h = double(half->spp);
+  const double all = luminance(glm::dvec3(sums_[4 * i], sums_[4 * i + 1], sums_[4 * i + 2]));
+  const double d = 0.5 * (half->luminance[i] / h - (all - half->luminance[i]) / h);  // (A - B) / 2
+  return d * d;
+}
+
 double Film::halves_variance_sum() const {
-  const Snapshot& half = *halves();
-  double variance_sum = 0.0;  // of the pixels' values: ((half A's mean - half B's) / 2)^2
-  const double h = double(half.spp);
-  for (std::size_t i = 0; i < half.luminance.size(); i++) {
-    double all = luminance(glm::dvec3(sums_[4 * i], sums_[4 * i + 1], sums_[4 * i + 2]));
-    double d = 0.5 * (half.luminance[i] / h - (all - half.luminance[i]) / h);
-    variance_sum += d * d;
-  }
+  double variance_sum = 0.0;  // of the pixels' values
+  for (int y = 0; y < height_; y++)
+    for (int x = 0; x < width_; x++) variance_sum += halves_variance(x, y);
   return variance_sum;
 }
 

@@ -79,6 +79,17 @@ class Film {
   void track_halves(std::uint64_t first_sample);
   // Whether the film now holds two such halves (spp a power of two, the block aligned).
   bool has_halves() const { return halves() != nullptr; }
+  // The first half (has_halves() only; 0 and empty otherwise): its sample count and each
+  // pixel's luminance sum over it, what an .exr keeps of the halves (film_file.h).
+  std::uint64_t first_half_spp() const;
+  const std::vector<double>& first_half_luminance() const;
+  // A film read back from an .exr that kept them: the first half's luminance sums, of
+  // half_spp = spp() / 2 samples (else ignored: a film holds halves of its own samples only).
+  void restore_halves(std::uint64_t half_spp, std::vector<double> luminance);
+  // A pixel's ((mean of one half - mean of the other) / 2)^2: an estimate of the variance of
+  // its mean with one degree of freedom (has_halves() only; 0 otherwise). pt_compare sums it
+  // over a region (common/app/compare.h).
+  double halves_variance(int x, int y) const;
   // Estimated relative standard error of the image's mean luminance (0 if unknown): the
   // per-pixel error over sqrt(pixels) (the pixels' errors are independent), so not the
   // noise a user sees.

@@ -182,6 +182,24 @@ TEST_CASE("film parts: a merge of parts that follow one another knows the halves
   CHECK(all.film.has_halves());
   CHECK(all.film.per_pixel_relative_error() == Approx(one.film.per_pixel_relative_error()).epsilon(1e-12));
   CHECK(all.film.per_pixel_relative_error() < all.film.sample_variance_relative_error());
+  // The .exr keeps them (film.Yhalf, pt:halves): a part read back, alone or as a merge of
+  // one, knows the halves its render knew, and so does a merge written and read again.
+  const std::string whole = render_part(stage3::kernels(), scene, s, 0, 64, "h_whole.exr");
+  const FilmPart read = read_film_part(whole);
+  CHECK(read.film.has_halves());
+  CHECK(read.film.first_half_spp() == 32);
+  CHECK(same_bits(read.film.first_half_luminance(), one.film.first_half_luminance()));
+  CHECK(read.film.per_pixel_relative_error() == Approx(one.film.per_pixel_relative_error()).epsilon(1e-12));
+  CHECK(merge_film_parts({read_film_part(whole)}, notes).film.has_halves());
+  CHECK(read_film_part(a).film.first_half_spp() == 8);  // samples 0 .. 15: halves 0:8 and 8:8
+  CHECK(read_film_part(c).film.first_half_spp() == 16);  // samples 32 .. 63: 32:16 and 48:16
+  ImageMetadata meta;
+  meta.stage = all.id.stage, meta.backend = all.backend, meta.film = &all.film, meta.identity = all.id;
+  meta.ranges = all.ranges;
+  const std::string all_path = scratch("h_all.exr").string();
+  OutputFile(all_path).write(all.film.mean_rgb(), 8, 8, meta);
+  CHECK(read_film_part(all_path).film.per_pixel_relative_error() ==
+        Approx(one.film.per_pixel_relative_error()).epsilon(1e-12));
   // Samples 16 .. 63 are no aligned block; with a gap the halves are not known either.
   CHECK(!merge_film_parts({read_film_part(b), read_film_part(c)}, notes).film.has_halves());
   const FilmPart gap = merge_film_parts({read_film_part(a), read_film_part(c)}, notes);
