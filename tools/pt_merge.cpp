@@ -54,6 +54,7 @@ int run(int argc, char** argv) {
   meta.film = &merged.film;
   meta.identity = merged.id;
   meta.ranges = merged.ranges;
+  meta.keep_halves = merged.kept_halves;  // where the parts kept theirs (--keep-halves)
   out.write(merged.film.mean_rgb(), merged.film.width(), merged.film.height(), meta);
   const pt::Film& f = merged.film;
   std::printf("pt_merge: %zu parts, %s, %dx%d, %llu spp, samples %s", count, merged.id.stage.c_str(), f.width(),

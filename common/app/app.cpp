@@ -195,6 +195,7 @@ ImageMetadata part_metadata(const char* stage, const Options& options, const Bac
                             const RenderResult& result) {
   ImageMetadata meta = image_metadata(stage, options, backend, result);
   if (OutputFile::is_exr(options.out)) meta.identity = film_identity(stage, scene, options.render);
+  meta.keep_halves = options.keep_halves;
   return meta;
 }
 

@@ -147,6 +147,7 @@ FilmPart film_part_of(const ExrImage& image, const std::string& path) {
     }
     part.film.restore_halves(spp / 2, std::move(luminance));
   }
+  part.kept_halves = hi >= 0 && lo >= 0;
   return part;
 }
 
@@ -214,6 +215,7 @@ FilmPart merge_film_parts(std::vector<FilmPart> parts, std::vector<std::string>&
   bool follow = merged.size() == 1 && ref.id.options.find("sampler sobol") != std::string::npos;
   for (const FilmPart& p : parts) follow = follow && p.ranges.size() == 1;
   FilmPart out = parts[order[0]];
+  for (const FilmPart& p : parts) out.kept_halves = out.kept_halves || p.kept_halves;
   // (One part keeps the halves it was read with.)
   if (follow && parts.size() > 1) out.film.track_halves(out.ranges.front().first);
   for (std::size_t k = 1; k < order.size(); k++) out.film.merge(parts[order[k]].film, follow);

@@ -47,13 +47,17 @@ struct FilmPart {
   std::string backend;  // "cpu (2 threads)", ...: parts of two backends agree to float rounding
   std::vector<SampleRange> ranges;
   Film film{1, 1};
+  bool kept_halves = false;  // its .exr had the halves' channels (--keep-halves); a merge: any part's
 };
 
 // The EXR's channels: R, G, B (the mean radiance), Y.variance (the estimated variance of the
 // pixel's mean luminance), then film.<S>.hi and film.<S>.lo for S in R, G, B, YY: the two
-// 32-bit halves of each double sum, so a merge restores the sums bit for bit. A film that knows
-// the halves of its samples (Film::has_halves) adds film.Yhalf.hi and .lo, the first half's
-// luminance sums, and the attribute pt:halves, that half's range (FIRST:COUNT).
+// 32-bit halves of each double sum, so a merge restores the sums bit for bit. With
+// --keep-halves (ImageMetadata::keep_halves), a film that knows the halves of its samples
+// (Film::has_halves) adds film.Yhalf.hi and .lo, the first half's luminance sums, and the
+// attribute pt:halves, that half's range (FIRST:COUNT). Not by default: a merge of parts
+// that do not split at the half cannot know them, and its .exr would then have fewer
+// channels than the one-run's.
 extern const char* const kFilmSumChannels[4];
 extern const char* const kFilmHalfChannel;
 

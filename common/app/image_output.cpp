@@ -89,7 +89,7 @@ ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const I
   ExrImage image;
   image.width = width, image.height = height;
   image.channels = {"R", "G", "B"};
-  const bool halves = meta.film && meta.film->has_halves() && meta.ranges.size() == 1;
+  const bool halves = meta.keep_halves && meta.film && meta.film->has_halves() && meta.ranges.size() == 1;
   if (meta.film) {
     image.channels.push_back("Y.variance");
     for (const char* name : kFilmSumChannels) {

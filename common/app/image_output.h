@@ -25,6 +25,9 @@ struct ImageMetadata {
   const Film* film = nullptr;
   FilmIdentity identity;
   std::vector<SampleRange> ranges;
+  // --keep-halves: also the first half's luminance sums where the film knows its halves
+  // (film_file.h), for pt_compare; off, an .exr has the same channels however it was split.
+  bool keep_halves = false;
 };
 
 class OutputFile {

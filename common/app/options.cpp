@@ -91,6 +91,10 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
                  "also write each pixel's estimated standard error over the image's mean: .png grey, black 0 to "
                  "white 2 x --target-error (else 2 x the printed per-pixel error); .exr/.hdr the values")
       ->type_name("PATH");
+  app.add_flag("--keep-halves", o.keep_halves,
+               "with an .exr --out under the default sampler: also keep the first half of the samples' luminance "
+               "sums (channels film.Yhalf), from which pt_compare estimates the noise far better (docs/film.md); "
+               "a merge of parts that do not split at the half cannot keep them");
   std::string sampler = "sobol";
   app.add_option("--sampler", sampler,
                  "where the random numbers come from: sobol (Owen-scrambled Sobol points, stratified) or "

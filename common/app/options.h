@@ -34,6 +34,7 @@ struct Options {
   bool resume = false;                    // --resume [PATH]: continue a checkpoint
   std::string resume_path;                // its path (default <out>.ckpt)
   std::string error_map;                  // --error-map PATH: each pixel's relative error (error_map.h)
+  bool keep_halves = false;               // --keep-halves: the .exr keeps the halves' sums (film_file.h)
   std::string camera;                     // --camera N|NAME: which of the file's cameras ("" = the first met)
   bool width_given = false;               // --width / --height were on the command line (a camera's
   bool height_given = false;              // aspectRatio sets the height when only the width is)

@@ -138,6 +138,37 @@ TEST_CASE("pt_compare: stage4 renders of other seeds are consistent on both back
   CHECK(verdict(ref, erratum) == 1);
 }
 
+// The standard error of the mean's difference that pt_compare printed ("mean: ... +- SE, t = ...").
+double mean_standard_error(const std::string& out) {
+  const std::size_t mean = out.find("\nmean: ");
+  const std::size_t pm = mean == std::string::npos ? mean : out.find("+- ", mean);
+  return pm == std::string::npos ? 0.0 : std::strtod(out.c_str() + pm + 3, nullptr);
+}
+
+TEST_CASE("pt_compare: renders written with --keep-halves are judged from their halves, far more sharply on a smooth "
+          "image; without it the .exr holds no halves",
+          "[stage4][cli][compare][statistical]") {
+  const char* stage4 = PT_STAGE4_BIN;
+  const std::string floor = "builtin:floor_large_light";
+  const std::string a = render(stage4, "cpu", 256, 8200, "--keep-halves", "kh_a", floor);
+  const std::string b = render(stage4, "cpu", 256, 8201, "--keep-halves", "kh_b", floor);
+  Run kept = compare(a + " " + b);
+  INFO(kept.out << kept.err);
+  CHECK(kept.code == 0);
+  CHECK(kept.out.find("\nvariance: from the halves of the samples in ") != std::string::npos);
+  CHECK(kept.out.find(" of 16 regions and the mean, elsewhere") != std::string::npos);
+  // The same samples without the flag: the samples' variance, which overstates the noise of
+  // this smooth image several times (docs/film.md).
+  const std::string c = render(stage4, "cpu", 256, 8200, "", "kh_c", floor);
+  const std::string d = render(stage4, "cpu", 256, 8201, "", "kh_d", floor);
+  Run plain = compare(c + " " + d);
+  INFO(plain.out);
+  CHECK(plain.code == 0);
+  CHECK(plain.out.find("\nvariance:") == std::string::npos);
+  CHECK(mean_standard_error(kept.out) > 0.0);
+  CHECK(mean_standard_error(plain.out) > 3.0 * mean_standard_error(kept.out));
+}
+
 #ifdef PT_LAB_CHECK
 // Only in the check build (cmake/Labs.cmake, PT_LAB_CHECK), whose programs take the labs'
 // known-wrong answers from PT_LAB_MUTANT (labs/mutants.h; docs/labs/README.md, "Grading by

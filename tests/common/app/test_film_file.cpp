@@ -37,7 +37,7 @@ fs::path scratch(const std::string& name) {
 
 // Renders the samples [first, first + count) of `scene` on the CPU and writes them as a part.
 std::string render_part(const StageKernels& kernels, const Scene& scene, RenderSettings s, std::uint64_t first,
-                        std::uint64_t count, const std::string& name) {
+                        std::uint64_t count, const std::string& name, bool keep_halves = false) {
   s.first_sample = first, s.spp = count;
   std::unique_ptr<Backend> backend = make_backend("cpu", kernels);
   RenderResult r = render(*backend, scene, s);
@@ -47,6 +47,7 @@ std::string render_part(const StageKernels& kernels, const Scene& scene, RenderS
   meta.film = &r.film;
   meta.identity = film_identity(kernels.name, scene, s);
   meta.ranges = {{first, count}};
+  meta.keep_halves = keep_halves;
   const std::string path = scratch(name).string();
   OutputFile(path).write(r.film.mean_rgb(), s.width, s.height, meta);
   return path;
@@ -182,20 +183,32 @@ TEST_CASE("film parts: a merge of parts that follow one another knows the halves
   CHECK(all.film.has_halves());
   CHECK(all.film.per_pixel_relative_error() == Approx(one.film.per_pixel_relative_error()).epsilon(1e-12));
   CHECK(all.film.per_pixel_relative_error() < all.film.sample_variance_relative_error());
-  // The .exr keeps them (film.Yhalf, pt:halves): a part read back, alone or as a merge of
-  // one, knows the halves its render knew, and so does a merge written and read again.
-  const std::string whole = render_part(stage3::kernels(), scene, s, 0, 64, "h_whole.exr");
+  // With --keep-halves the .exr keeps them (film.Yhalf, pt:halves): a part read back, alone or
+  // as a merge of one, knows the halves its render knew, and so does a merge written and read
+  // again. Without it the .exr has no such channels: the same channels however it was split.
+  const std::string plain = render_part(stage3::kernels(), scene, s, 0, 64, "h_plain.exr");
+  CHECK_FALSE(read_film_part(plain).film.has_halves());
+  CHECK_FALSE(read_film_part(plain).kept_halves);
+  const std::string whole = render_part(stage3::kernels(), scene, s, 0, 64, "h_whole.exr", true);
   const FilmPart read = read_film_part(whole);
+  CHECK(read.kept_halves);
   CHECK(read.film.has_halves());
   CHECK(read.film.first_half_spp() == 32);
   CHECK(same_bits(read.film.first_half_luminance(), one.film.first_half_luminance()));
   CHECK(read.film.per_pixel_relative_error() == Approx(one.film.per_pixel_relative_error()).epsilon(1e-12));
   CHECK(merge_film_parts({read_film_part(whole)}, notes).film.has_halves());
-  CHECK(read_film_part(a).film.first_half_spp() == 8);  // samples 0 .. 15: halves 0:8 and 8:8
-  CHECK(read_film_part(c).film.first_half_spp() == 16);  // samples 32 .. 63: 32:16 and 48:16
+  const std::string ka = render_part(stage3::kernels(), scene, s, 0, 16, "hk_a.exr", true);
+  const std::string kc = render_part(stage3::kernels(), scene, s, 32, 32, "hk_c.exr", true);
+  CHECK(read_film_part(ka).film.first_half_spp() == 8);  // samples 0 .. 15: halves 0:8 and 8:8
+  CHECK(read_film_part(kc).film.first_half_spp() == 16);  // samples 32 .. 63: 32:16 and 48:16
+  const std::string kb = render_part(stage3::kernels(), scene, s, 16, 16, "hk_b.exr", true);
+  const FilmPart kept = merge_film_parts({read_film_part(kc), read_film_part(ka), read_film_part(kb)}, notes);
+  CHECK(kept.kept_halves);  // pt_merge writes them again
+  CHECK(kept.film.has_halves());
+  CHECK_FALSE(merge_film_parts({read_film_part(a), read_film_part(b)}, notes).kept_halves);
   ImageMetadata meta;
   meta.stage = all.id.stage, meta.backend = all.backend, meta.film = &all.film, meta.identity = all.id;
-  meta.ranges = all.ranges;
+  meta.ranges = all.ranges, meta.keep_halves = true;
   const std::string all_path = scratch("h_all.exr").string();
   OutputFile(all_path).write(all.film.mean_rgb(), 8, 8, meta);
   CHECK(read_film_part(all_path).film.per_pixel_relative_error() ==
