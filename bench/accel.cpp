@@ -1,7 +1,8 @@
 // pt_bench's acceleration section (issue 17; accel.h): rays per second of the nearest-hit
 // search against the triangle count, from builtin:cornell's 36 triangles to a 1.3-million
 // triangle icosphere in the Cornell room, for the same camera rays, diffuse bounce rays
-// and shadow rays (bounded by the light point, as stages 4 and 5 trace them) in the same run: the brute force (the article's search, Eq. 2, as the CPU kernel compiles
+// and shadow rays (bounded by the light point, as stages 4 and 5 trace them; and the same
+// shadow rays through the any-hit search, as rays towards the sky and the sun go) in the same run: the brute force (the article's search, Eq. 2, as the CPU kernel compiles
 // it), the BVH on the CPU and on the GPU backend, and Embree 3. The CPU methods run on
 // all cores, alternating, so that they see the same load. Then the build of the largest
 // mesh: build_bvh against Embree's high-quality build (accel_build.cpp). Writes
@@ -181,7 +182,7 @@ void run_accel(const Config& config) {
              "hits,mean_t,rays_differing_from_bvh_cpu,note\n";
   std::vector<int> levels{-1};
   for (int l = 1; l <= config.accel_max_level; l++) levels.push_back(l);
-  double brute_tests_per_s[3] = {0.0, 0.0, 0.0};  // triangle tests per second of the last brute force, per set
+  double brute_tests_per_s[4] = {0.0, 0.0, 0.0, 0.0};  // triangle tests per second of the last brute force, per set
   const std::string cpu_device = std::to_string(cores()) + " threads";
   for (int level : levels) {
     Scene scene = accel_scene(level);
@@ -193,6 +194,8 @@ void run_accel(const Config& config) {
     bind_cpu_scene(scene, &bvh, nullptr, 0, &wide);
     const RaySet bounce = bounce_rays(camera, config.seed + 1u + uint(level + 1));
     const RaySet shadow = shadow_rays(scene, camera, config.seed + 101u + uint(level + 1));
+    RaySet occlusion = shadow;  // the same rays through the any-hit search
+    occlusion.any_hit = true;
     std::printf("== %s: %zu triangles, BVH %s; %zu camera rays, %zu bounce rays, %zu shadow rays\n",
                 accel_scene_name(level).c_str(), n, bvh.stats.summary().c_str(), camera.size(), bounce.size(),
                 shadow.size());
@@ -201,9 +204,9 @@ void run_accel(const Config& config) {
     std::optional<EmbreeScene> embree;
     if (EmbreeScene::available()) embree.emplace(scene.triangles, cores());
     std::optional<TriangleSoa> soa;
-    for (int set = 0; set < 3; set++) {
-      const RaySet& rays = set == 0 ? camera : set == 1 ? bounce : shadow;
-      const char* set_name = set == 0 ? "camera" : set == 1 ? "bounce" : "shadow";
+    for (int set = 0; set < 4; set++) {
+      const RaySet& rays = set == 0 ? camera : set == 1 ? bounce : set == 2 ? shadow : occlusion;
+      const char* set_name = set == 0 ? "camera" : set == 1 ? "bounce" : set == 2 ? "shadow" : "shadow_any";
       Result bvh_cpu{"bvh_cpu", cpu_device}, brute{"brute_cpu", cpu_device}, emb{"embree", cpu_device},
           bvh_gpu{"bvh_gpu", gpu ? gpu->device() : ""};
       auto trace = [&](const std::size_t* index, std::size_t a, std::size_t b, float* t) { trace_cpu(rays, index, a, b, t); };

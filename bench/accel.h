@@ -44,10 +44,14 @@ constexpr float kNoBound = 3.402823466e38f;  // the largest float, intersect.gls
 // A ray set in two arrays (unit directions), and for shadow rays each ray's bound: the
 // search then finds the nearest hit closer than it, as the renderer's occluded() asks
 // (common/kernel/lights.glsl); empty: none, the largest float (intersect.glsl's kInfinity).
+// any_hit: the search asks only whether something lies closer than the bound (the any-hit
+// walk, occluded_scene() in intersect.glsl: shadow rays towards the sky and the sun), and a
+// blocked ray's distance is reported as its bound.
 struct RaySet {
   std::vector<glm::vec3> origins;
   std::vector<glm::vec3> dirs;
   std::vector<float> t_max;
+  bool any_hit = false;
   std::size_t size() const { return origins.size(); }
   float bound(std::size_t i) const { return t_max.empty() ? kNoBound : t_max[i]; }
 };
@@ -68,7 +72,7 @@ void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>
 void set_cpu_accel(bool bvh);
 // t_out[i] for the rays i = index[k], k in [first, last) (index nullptr: i = k): the
 // distance of the nearest hit (closer than the ray's bound) as nearest_triangle() finds it,
-// or kMiss. Thread-safe.
+// or kMiss; for an any-hit set, the bound where occluded_scene() says blocked. Thread-safe.
 void trace_cpu(const RaySet& rays, const std::size_t* index, std::size_t first, std::size_t last, float* t_out);
 // size x size camera rays, one through a random point of each pixel, row by row.
 RaySet camera_rays(const Camera& camera, int size, std::uint32_t seed);
@@ -101,7 +105,8 @@ class EmbreeScene {
   double commit_seconds() const { return commit_seconds_; }  // rtcCommitScene alone
   std::size_t bytes() const { return bytes_; }  // what the commit allocated and kept
   // t_out[i] for rays [first, first + n): the nearest hit's distance (closer than the ray's
-  // bound: rtcIntersect1's tfar), or kMiss. Thread-safe.
+  // bound: rtcIntersect1's tfar), or kMiss; for an any-hit set rtcOccluded1, the bound where
+  // blocked. Thread-safe.
   void trace(const RaySet& rays, std::size_t first, std::size_t n, float* t_out) const;
 
  private:

@@ -60,6 +60,15 @@ void set_cpu_accel(bool bvh) {
 void trace_cpu(const RaySet& rays, const std::size_t* index, std::size_t first, std::size_t last, float* t_out) {
   for (std::size_t k = first; k < last; k++) {
     const std::size_t i = index ? index[k] : k;
+    if (rays.any_hit) {
+      // occluded_triangles(), as occluded_scene() asks it in a scene without alpha masks (the
+      // stages' kernels are specialised to the scene's features; this file's general kernel
+      // would take occluded_scene()'s nearest-hit path for holes).
+      const kernel::Ray ray(rays.origins[i], rays.dirs[i]);
+      const bool blocked = kernel::occluded_triangles(ray, kernel::make_ray_shear(ray.dir), rays.bound(i));
+      t_out[i] = blocked ? rays.bound(i) : kMiss;
+      continue;
+    }
     kernel::Hit h = nearest(rays.origins[i], rays.dirs[i], rays.bound(i));
     t_out[i] = h.kind == kPrimNone ? kMiss : h.t;
   }

@@ -96,6 +96,18 @@ EmbreeScene::~EmbreeScene() {
 void EmbreeScene::trace(const RaySet& rays, std::size_t first, std::size_t n, float* t_out) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  if (rays.any_hit) {
+    for (std::size_t i = first; i < first + n; i++) {
+      RTCRay ray;
+      const glm::vec3 o = rays.origins[i], d = rays.dirs[i];
+      ray.org_x = o.x, ray.org_y = o.y, ray.org_z = o.z, ray.tnear = 0.0f;
+      ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z, ray.time = 0.0f;
+      ray.tfar = rays.bound(i), ray.mask = ~0u, ray.id = 0u, ray.flags = 0u;
+      rtcOccluded1(impl_->scene, &context, &ray);
+      t_out[i] = ray.tfar < 0.0f ? rays.bound(i) : kMiss;  // -inf: blocked
+    }
+    return;
+  }
   for (std::size_t i = first; i < first + n; i++) {
     RTCRayHit rh;
     const glm::vec3 o = rays.origins[i], d = rays.dirs[i];

@@ -46,11 +46,13 @@ void GpuBvhTracer::set_scene(const Scene& scene, const Bvh& bvh, const RaySet& r
     if (data && bytes) m.buffers.back().write(data, bytes);
     return m.buffers.back();
   };
-  // The rays as vec4 triples (origin, direction and bound, unused) in binding 3, as the
-  // kernel reads them: a shadow ray's bound is its search's t_max, the others' infinity.
+  // The rays as vec4 triples (origin; direction and bound; the search: 1 any hit, 0 the
+  // nearest) in binding 3, as the kernel reads them: a shadow ray's bound is its search's
+  // t_max, the others' infinity.
   std::vector<glm::vec4> packed(3 * count, glm::vec4(0.0f));
   for (std::size_t i = 0; i < count; i++) {
     packed[3 * i] = glm::vec4(rays.origins[i], 1.0f), packed[3 * i + 1] = glm::vec4(rays.dirs[i], rays.bound(i));
+    packed[3 * i + 2] = glm::vec4(0.0f, 0.0f, 0.0f, rays.any_hit ? 1.0f : 0.0f);
   }
   gpu::Buffer& triangles = storage(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
   gpu::Buffer& ray_buffer = storage(packed.data(), packed.size() * sizeof(glm::vec4));

@@ -5,7 +5,8 @@
 // (naive_raycast.comp). Article: the raycasting step (Eq. 2), its closest-hit search. The
 // rays sit in binding 3 (gpu/kernel_bindings.glsl's point_lights: a position and an intensity 16 bytes
 // apart in a 48-byte entry, read here as origin and direction, and cos_outer after the intensity as
-// the bound of the search: kInfinity, or a shadow ray's t_max in the accel section); params.triangle_count is the triangle count,
+// the bound of the search: kInfinity, or a shadow ray's t_max in the accel section; cos_inner,
+// the entry's last float, 1 for the any-hit search occluded_scene() instead); params.triangle_count is the triangle count,
 // params.width the ray count. With params.accel = kAccelBvh and the BVH at bindings 9 and 10
 // it walks common/kernel/bvh.glsl instead (the accel section, accel_gpu.cpp). The build's
 // kernel_definitions.glsl defines what the kernel files declare (cmake/Labs.cmake).
@@ -24,6 +25,11 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= params.width) return;
   Ray ray = Ray(point_lights[i].position, point_lights[i].intensity);
-  Hit hit = intersect_scene(ray, point_lights[i].cos_outer);  // the ray's bound (a shadow ray's t_max) or kInfinity
+  float bound = point_lights[i].cos_outer;  // the ray's bound (a shadow ray's t_max) or kInfinity
+  if (point_lights[i].cos_inner > 0.5f) {  // the any-hit search: the bound where blocked
+    pass_output[i] = vec4(occluded_scene(ray, bound) ? bound : kInfinity, 0.0f, 0.0f, 0.0f);
+    return;
+  }
+  Hit hit = intersect_scene(ray, bound);
   pass_output[i] = vec4(hit.kind == kPrimNone ? kInfinity : hit.t, hit.b1, hit.b2, float(hit.prim));
 }

@@ -13,8 +13,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 ACCEL_METHODS = OrderedDict([("brute_cpu", "brute force (CPU, --accel none)"), ("bvh_cpu", "BVH (CPU)"),
-                             ("bvh_gpu", "BVH (GPU backend)"), ("embree", "Embree 3, rtcIntersect1")])
-RAY_SETS = ("camera", "bounce", "shadow")
+                             ("bvh_gpu", "BVH (GPU backend)"), ("embree", "Embree 3 (rtcIntersect1; any hit: rtcOccluded1)")])
+RAY_SETS = ("camera", "bounce", "shadow", "shadow_any")
+RAY_SET_TITLES = {"camera": "camera rays", "bounce": "bounce rays", "shadow": "shadow rays (nearest hit)",
+                  "shadow_any": "shadow rays (any hit)"}
 TARGET_SETS = ("camera", "bounce")  # the ray sets of issue 17's targets
 ACCEL_TARGET_EMBREE = 0.5   # CPU BVH >= 0.5x Embree on the ~1M-triangle mesh
 ACCEL_TARGET_GPU = 0.5      # GPU (lavapipe) BVH >= 0.5x CPU BVH
@@ -38,7 +40,7 @@ def num(v):
 
 
 def plot_accel(rows, out_dir):
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2), sharey=True)
+    fig, axes = plt.subplots(1, 4, figsize=(18, 4.2), sharey=True)
     for ax, rays in zip(axes, RAY_SETS):
         for method, label in ACCEL_METHODS.items():
             pts = [(int(r["triangles"]), num(r["mrays_per_s"])) for r in rows
@@ -46,7 +48,7 @@ def plot_accel(rows, out_dir):
             if pts:
                 ax.loglog([p[0] for p in pts], [p[1] * 1e6 for p in pts], marker="o", markersize=3, label=label)
         ax.set_xlabel("triangles")
-        ax.set_title("%s rays" % rays)
+        ax.set_title(RAY_SET_TITLES[rays])
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("rays per second (wall clock)")
     axes[0].legend(fontsize=8)
@@ -94,7 +96,9 @@ def accel_section(rows, builds, run, out_dir):
           "ray's hit to a uniform point of the ceiling light (none where the light point lies behind the surface), "
           "spawned as stages 4 and 5 spawn them (common/kernel/lights.glsl, occluded()) and searched as they search: "
           "the nearest hit closer than a bound, here where occluded()'s last stretch before the light point begins "
-          "(so that no method counts the light's own surface). Every method traces the same "
+          "(so that no method counts the light's own surface); shadow_any: the same shadow rays through the any-hit "
+          "search (`occluded_scene`, the first hit found ends it; Embree's `rtcOccluded1`), as rays towards the sky "
+          "and the sun are traced. Every method traces the same "
           "rays: the brute force is the renderer's `--accel none` search (cpu/triangle_lanes.h), the BVH is "
           "the one tree of common/scene/bvh.h: on the CPU as the CPU backend walks it, collapsed to 8 children and "
           "leaf blocks of up to 8 triangles on SIMD lanes (cpu/wide_bvh.h), on the GPU backend common/kernel/bvh.glsl's "
@@ -167,10 +171,11 @@ def accel_section(rows, builds, run, out_dir):
 
     # The shadow rays, which stages 4 and 5 trace as many as their bounce rays: the same ratios,
     # not among the issue's targets.
-    g, c, e = rate("shadow", top, "bvh_gpu"), rate("shadow", top, "bvh_cpu"), rate("shadow", top, "embree")
-    if c:
-        md += ["Shadow rays (not among the issue's targets), %d triangles: CPU BVH %s of Embree, GPU backend %s of "
-               "the CPU BVH." % (top, ratio(c, e), ratio(g, c)), ""]
+    for rays, what in (("shadow", "nearest hit"), ("shadow_any", "any hit")):
+        g, c, e = rate(rays, top, "bvh_gpu"), rate(rays, top, "bvh_cpu"), rate(rays, top, "embree")
+        if c:
+            md += ["Shadow rays, %s (not among the issue's targets), %d triangles: CPU BVH %s of Embree, GPU backend "
+                   "%s of the CPU BVH." % (what, top, ratio(c, e), ratio(g, c)), ""]
 
     # Sanity: the same hits. Each method against the CPU BVH on the same rays.
     sanity = []
