@@ -2,8 +2,8 @@
 // search against the triangle count, from builtin:cornell's 36 triangles to a 1.3-million
 // triangle icosphere in the Cornell room, for the same camera rays, diffuse bounce rays
 // and shadow rays (bounded by the light point, as stages 4 and 5 trace them; and the same
-// shadow rays through the any-hit search, as rays towards the sky and the sun go) in the same run: the brute force (the article's search, Eq. 2, as the CPU kernel compiles
-// it), the BVH on the CPU and on the GPU backend, and Embree 3. The CPU methods run on
+// shadow rays through the any-hit search, as rays towards the sky and the sun go) in the
+// same run: the brute force (the article's search, Eq. 2, as the CPU kernel compiles it), the BVH on the CPU and on the GPU backend, and Embree 3. The CPU methods run on
 // all cores, alternating, so that they see the same load. Then the build of the largest
 // mesh: build_bvh against Embree's high-quality build (accel_build.cpp). Writes
 // docs/results/accel.csv, accel_build.csv and accel_run.txt (the command, the date and

@@ -1,6 +1,7 @@
 // pt_bench's acceleration section (issue 17): rays per second of the nearest-hit search
-// against the triangle count (shadow rays: bounded by their light point), for the same rays, by the brute force (the article's search,
-// Eq. 2, as the CPU kernel compiles it), this project's BVH on the CPU and on the GPU
+// (shadow rays: bounded by their light point; and the any-hit search) against the triangle
+// count, for the same rays, by the brute force (the article's search, Eq. 2, as the CPU
+// kernel compiles it), this project's BVH on the CPU and on the GPU
 // backend (common/kernel/bvh.glsl), and Embree 3 when the build found it; and the BVH's
 // build time and size against Embree's high-quality build. What its parts share.
 #pragma once
@@ -45,7 +46,7 @@ constexpr float kNoBound = 3.402823466e38f;  // the largest float, intersect.gls
 // search then finds the nearest hit closer than it, as the renderer's occluded() asks
 // (common/kernel/lights.glsl); empty: none, the largest float (intersect.glsl's kInfinity).
 // any_hit: the search asks only whether something lies closer than the bound (the any-hit
-// walk, occluded_scene() in intersect.glsl: shadow rays towards the sky and the sun), and a
+// walk, occluded_triangles(): shadow rays towards the sky and the sun), and a
 // blocked ray's distance is reported as its bound.
 struct RaySet {
   std::vector<glm::vec3> origins;
@@ -72,7 +73,7 @@ void bind_cpu_scene(const Scene& scene, const Bvh* bvh, const std::vector<float>
 void set_cpu_accel(bool bvh);
 // t_out[i] for the rays i = index[k], k in [first, last) (index nullptr: i = k): the
 // distance of the nearest hit (closer than the ray's bound) as nearest_triangle() finds it,
-// or kMiss; for an any-hit set, the bound where occluded_scene() says blocked. Thread-safe.
+// or kMiss; for an any-hit set, the bound where occluded_triangles() says blocked. Thread-safe.
 void trace_cpu(const RaySet& rays, const std::size_t* index, std::size_t first, std::size_t last, float* t_out);
 // size x size camera rays, one through a random point of each pixel, row by row.
 RaySet camera_rays(const Camera& camera, int size, std::uint32_t seed);

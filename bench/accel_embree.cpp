@@ -96,13 +96,16 @@ EmbreeScene::~EmbreeScene() {
 void EmbreeScene::trace(const RaySet& rays, std::size_t first, std::size_t n, float* t_out) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  auto set_ray = [&](std::size_t i, RTCRay& ray) {
+    const glm::vec3 o = rays.origins[i], d = rays.dirs[i];
+    ray.org_x = o.x, ray.org_y = o.y, ray.org_z = o.z, ray.tnear = 0.0f;
+    ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z, ray.time = 0.0f;
+    ray.tfar = rays.bound(i), ray.mask = ~0u, ray.id = 0u, ray.flags = 0u;
+  };
   if (rays.any_hit) {
     for (std::size_t i = first; i < first + n; i++) {
       RTCRay ray;
-      const glm::vec3 o = rays.origins[i], d = rays.dirs[i];
-      ray.org_x = o.x, ray.org_y = o.y, ray.org_z = o.z, ray.tnear = 0.0f;
-      ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z, ray.time = 0.0f;
-      ray.tfar = rays.bound(i), ray.mask = ~0u, ray.id = 0u, ray.flags = 0u;
+      set_ray(i, ray);
       rtcOccluded1(impl_->scene, &context, &ray);
       t_out[i] = ray.tfar < 0.0f ? rays.bound(i) : kMiss;  // -inf: blocked
     }
@@ -110,10 +113,7 @@ void EmbreeScene::trace(const RaySet& rays, std::size_t first, std::size_t n, fl
   }
   for (std::size_t i = first; i < first + n; i++) {
     RTCRayHit rh;
-    const glm::vec3 o = rays.origins[i], d = rays.dirs[i];
-    rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z, rh.ray.tnear = 0.0f;
-    rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z, rh.ray.time = 0.0f;
-    rh.ray.tfar = rays.bound(i), rh.ray.mask = ~0u, rh.ray.id = 0u, rh.ray.flags = 0u;
+    set_ray(i, rh.ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
     t_out[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kMiss : rh.ray.tfar;

@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/accel.h"  // kNoBound
 #include "bench/gpu_ray_kernel.h"
 #include "intersect_raycast_spirv.h"
 #include "naive_raycast_spirv.h"
@@ -23,7 +24,7 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   // intersect.glsl's kInfinity; unused: a PointLight's 48 bytes), as both kernels read them.
   std::vector<glm::vec4> rays(3 * count, glm::vec4(0.0f));
   for (std::size_t i = 0; i < count; i++) {
-    rays[3 * i] = glm::vec4(origins[i], 1.0f), rays[3 * i + 1] = glm::vec4(dirs[i], 3.402823466e38f);
+    rays[3 * i] = glm::vec4(origins[i], 1.0f), rays[3 * i + 1] = glm::vec4(dirs[i], kNoBound);
   }
   auto storage = [&](const void* data, std::size_t bytes, VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
     gpu::Buffer b(context, std::max<std::size_t>(bytes, 64), usage);

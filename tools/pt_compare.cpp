@@ -146,7 +146,7 @@ int run(int argc, char** argv) {
   std::printf("threshold: |t|, |z| > %.3g (alpha %g, Bonferroni over %d tests: %zu regions of %dx%d pixels and the "
               "mean)\n",
               c.threshold, settings.alpha, c.tests, c.regions.size(), c.region, c.region);
-  if (ref.film.has_halves() && test.film.has_halves()) {
+  if (c.halves) {
     std::printf("variance: from the halves of the samples in %d of %zu regions%s, elsewhere from the samples' "
                 "variance (docs/film.md)\n", c.halves_regions, c.regions.size(), c.mean_from_halves ? " and the mean" : "");
   }

@@ -107,7 +107,7 @@ Comparison compare_films(const Film& ref, const Film& test, const CompareSetting
   // Per pixel: the difference, each render's variance of one sample, the rounding allowance;
   // where both renders know the halves of their samples, each one's halves' variance of its mean.
   std::vector<double> d(pixels), var_a(pixels), var_b(pixels), rounding(pixels);
-  const bool halves = ref.has_halves() && test.has_halves();
+  const bool halves = c.halves = ref.has_halves() && test.has_halves();
   std::vector<double> half_a(halves ? pixels : 0), half_b(halves ? pixels : 0);
   // The variance of a mean of spp samples of each render, per unit of one-sample variance.
   const double per_sample = 1.0 / double(ref.spp()) + 1.0 / double(test.spp());
@@ -189,7 +189,7 @@ Comparison compare_films(const Film& ref, const Film& test, const CompareSetting
       const double s_max = std::max(k.s_a, k.s_b);
       double v_a = s_max / n_a, v_b = s_max / n_b, g_a, g_b;
       halves_bounds(k, g_a, g_b);
-      if (g_a < v_a || g_b < v_b) t.from_halves = true, c.halves_regions++;
+      if (g_a < v_a || g_b < v_b) c.halves_regions++;
       const double rv = std::min(v_a, g_a) + std::min(v_b, g_b) + k.rounding;
       const double count = double(t.x1 - t.x0) * double(t.y1 - t.y0);
       t.ref_mean = ra / count;

@@ -94,7 +94,6 @@ struct RegionTest {
   double difference = 0.0;      // the mean over its pixels of L_test - L_ref
   double standard_error = 0.0;  // of that difference
   double z = 0.0;               // difference / standard_error (0 when both are 0)
-  bool from_halves = false;     // its variance took the halves' bound of a render
 };
 
 struct Comparison {
@@ -107,6 +106,7 @@ struct Comparison {
   std::size_t worst = 0;            // the region of the largest |z|
   int tests = 0;                    // regions + 1: the Bonferroni correction's m
   double threshold = 0.0;           // a test fails when |z| > threshold
+  bool halves = false;              // both films knew their halves (Film::has_halves)
   int halves_regions = 0;           // regions whose variance took the halves' bound
   bool mean_from_halves = false;    // the mean's variance took the halves' bound over the image
   bool mean_failed = false;

@@ -124,10 +124,7 @@ FilmPart film_part_of(const ExrImage& image, const std::string& path) {
   std::vector<double> sums(4 * pixels);
   for (std::size_t p = 0; p < pixels; p++) {
     const std::uint32_t* v = &image.pixels[p * n];
-    for (int k = 0; k < 4; k++) {
-      const std::uint64_t bits = (std::uint64_t(v[index[2 * k]]) << 32) | v[index[2 * k + 1]];
-      std::memcpy(&sums[4 * p + std::size_t(k)], &bits, sizeof(double));
-    }
+    for (int k = 0; k < 4; k++) sums[4 * p + std::size_t(k)] = join_double(v[index[2 * k]], v[index[2 * k + 1]]);
   }
   part.film = Film(image.width, image.height);
   part.film.restore(spp, std::move(sums));
@@ -140,11 +137,7 @@ FilmPart film_part_of(const ExrImage& image, const std::string& path) {
   if (hi >= 0 && lo >= 0 && image.is_uint[std::size_t(hi)] && image.is_uint[std::size_t(lo)] &&
       part.ranges.size() == 1 && halves == format_ranges({{part.ranges.front().first, spp / 2}})) {
     std::vector<double> luminance(pixels);
-    for (std::size_t p = 0; p < pixels; p++) {
-      const std::uint32_t* v = &image.pixels[p * n];
-      const std::uint64_t bits = (std::uint64_t(v[hi]) << 32) | v[lo];
-      std::memcpy(&luminance[p], &bits, sizeof(double));
-    }
+    for (std::size_t p = 0; p < pixels; p++) luminance[p] = join_double(image.pixels[p * n + hi], image.pixels[p * n + lo]);
     part.film.restore_halves(spp / 2, std::move(luminance));
   }
   part.kept_halves = hi >= 0 && lo >= 0;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,19 @@ struct FilmPart {
 // channels than the one-run's.
 extern const char* const kFilmSumChannels[4];
 extern const char* const kFilmHalfChannel;
+
+// A double as the two 32-bit halves of its bits (the .hi and .lo channels), and back.
+inline void split_double(double v, std::uint32_t& hi, std::uint32_t& lo) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  hi = std::uint32_t(bits >> 32), lo = std::uint32_t(bits);
+}
+inline double join_double(std::uint32_t hi, std::uint32_t lo) {
+  const std::uint64_t bits = (std::uint64_t(hi) << 32) | lo;
+  double v;
+  std::memcpy(&v, &bits, sizeof v);
+  return v;
+}
 
 // Reads a part, or throws pt::Error(kExitBadScene) naming the file and what is missing.
 FilmPart read_film_part(const std::string& path);

@@ -116,18 +116,8 @@ ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const I
     const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
     const float variance = film.spp() >= 2 ? float(film.sample_variance(x, y) / double(film.spp())) : 0.0f;
     std::memcpy(o + 3, &variance, sizeof variance);
-    for (int k = 0; k < 4; k++) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &film.sums()[4 * p + std::size_t(k)], sizeof bits);
-      o[4 + 2 * k] = std::uint32_t(bits >> 32);
-      o[5 + 2 * k] = std::uint32_t(bits);
-    }
-    if (halves) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &film.first_half_luminance()[p], sizeof bits);
-      o[12] = std::uint32_t(bits >> 32);
-      o[13] = std::uint32_t(bits);
-    }
+    for (int k = 0; k < 4; k++) split_double(film.sums()[4 * p + std::size_t(k)], o[4 + 2 * k], o[5 + 2 * k]);
+    if (halves) split_double(film.first_half_luminance()[p], o[12], o[13]);
   }
   return image;
 }
