@@ -126,12 +126,15 @@ double Film::pixel_standard_error(int x, int y) const {
 
 double Film::per_pixel_relative_error() const {
   if (spp_ < 2) return 0.0;
+  return relative_rms(per_pixel_error_from_halves() ? halves_variance_sum() : sample_variance_sum());
+}
+
+bool Film::per_pixel_error_from_halves() const {
   // Both are upper bounds of the error under randomised QMC (film.h): the smaller one, the
   // halves' only where enough pixels average its one degree of freedom per pixel.
-  double variance_sum = sample_variance_sum();
   const bool enough = double(width_) * double(height_) >= double(kMinPixelsForHalves);
-  if (has_halves() && enough) variance_sum = std::min(halves_variance_sum(), variance_sum);
-  return relative_rms(variance_sum);
+  if (spp_ < 2 || !has_halves() || !enough) return false;
+  return halves_variance_sum() < sample_variance_sum();
 }
 
 double Film::sample_variance_relative_error() const {

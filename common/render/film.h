@@ -63,6 +63,10 @@ class Film {
   // unknown (spp < 2) or for a black image; infinity if the sums are not finite (never
   // trusted to stop a render).
   double per_pixel_relative_error() const;
+  // Whether per_pixel_relative_error() took the halves' figure (it then stands for the
+  // pixels' halves_variance(), else for their pixel_standard_error()^2): --error-map draws
+  // the estimate the summary printed.
+  bool per_pixel_error_from_halves() const;
   // The same figure from each pixel's sample variance (pixel_standard_error): the error of
   // independent samples' mean, and an upper bound for randomised QMC (docs/sampling.md).
   double sample_variance_relative_error() const;
