@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>  // program_invocation_short_name (GNU)
 #include <chrono>
+#include <cstdio>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -82,8 +85,19 @@ class CpuBackend : public Backend {
         kernel_.render_rows(y0, std::min(height, y0 + rows_per_task), out.data());
       }
     };
+    // No more threads than there are tasks. A thread the system refuses (a process or
+    // memory limit) is not an error: the threads already started, and this one, do the
+    // work, and later passes ask for no more than that (said once on stderr).
+    const unsigned tasks = (height + rows_per_task - 1) / rows_per_task;
+    const unsigned wanted = std::max(1u, std::min(threads_, tasks));
     std::vector<std::thread> pool;
-    for (unsigned i = 1; i < threads_; i++) pool.emplace_back(work);
+    try {
+      while (pool.size() + 1 < wanted) pool.emplace_back(work);
+    } catch (const std::system_error& e) {
+      std::fprintf(stderr, "%s: the system started only %zu of the %u CPU threads asked for (%s); rendering with %zu\n",
+                   program_invocation_short_name, pool.size() + 1, threads_, e.what(), pool.size() + 1);
+      threads_ = unsigned(pool.size() + 1);
+    }
     work();
     for (std::thread& t : pool) t.join();
     result.kernel_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -79,7 +79,9 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_option("--out", o.out, "output image: .exr (linear float), .png (8-bit sRGB) or .hdr")->capture_default_str();
   app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
   app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
-  app.add_option("--threads", o.threads, "CPU backend threads (0 = all cores)")->capture_default_str();
+  app.add_option("--threads", o.threads, "CPU backend threads (0 = all cores)")
+      ->capture_default_str()
+      ->check(CLI::Range(0u, 1024u));
   app.add_option("--time-budget", o.render.time_budget,
                  "render in passes until SECONDS are spent (--spp, if given, still caps the samples)")
       ->check(CLI::Range(0.0, 1e9));

@@ -130,6 +130,22 @@ TEST_CASE("cli: bad options exit 2 with one line", "[cli]") {
   check_error(run("--width 65536 --height 65536 --backend cpu"), 2, "smaller image");
 }
 
+TEST_CASE("cli: --threads beyond 1024 exits 2; threads the system refuses leave the render to those it started",
+          "[cli]") {
+  check_error(run("--backend cpu --threads 100000"), 2, "--threads");
+#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer cannot start under a 1.2 GB address-space limit
+  // 1,024 threads of 8 MB stacks do not fit into 1.2 GB of address space: before the fix the
+  // pool's failed thread ended the program (std::terminate, exit 134).
+  std::string out = (scratch() / "threads.png").string();
+  Run r = run("--backend cpu --threads 1024 --width 1 --height 4096 --spp 1 --out " + out, "prlimit --as=1200000000");
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.err.find("stage1_raycast: the system started only ") != std::string::npos);
+  CHECK(r.out.find("(1024 threads)") == std::string::npos);
+  CHECK(fs::exists(out));
+#endif
+}
+
 TEST_CASE("cli: bad scenes exit 3 with one line", "[cli]") {
   check_error(run("--backend cpu --scene /nonexistent/scene.gltf"), 3, "/nonexistent/scene.gltf");
   check_error(run("--backend cpu --scene builtin:nothing"), 3, "builtin:nothing");
