@@ -5,7 +5,9 @@
 // emission it finds, weighted by the power heuristic of the two strategies' pdfs
 // (declared below, defined in common/kernel/mis.glsl), so emission is counted on every
 // bounce, once in expectation.
-// Light samples place their point on a triangle by the solid angle it subtends.
+// Light samples place their point on a triangle by the solid angle it subtends. The light
+// pdf enters the weights times a factor that a pilot sets per lobe class (1 is Veach's power
+// heuristic; common/kernel/mis_pilot.glsl): any factor keeps the two weights summing to 1.
 // Written in the GLSL/C++ subset: both backends run this file.
 #include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
@@ -16,6 +18,7 @@
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/roulette.glsl"
 #include "common/kernel/lights.glsl"
+#include "common/kernel/mis_pilot.glsl"
 
 // The power heuristic's weight of a sample drawn with pdf `mine` against the other
 // strategy's pdf `other` for its direction: defined in common/kernel/mis.glsl, or by
@@ -35,6 +38,8 @@ vec3 Li(Ray ray) {
   vec3 from_p = vec3(0.0f);
   vec3 from_n = vec3(0.0f, 0.0f, 1.0f);
   float bsdf_pdf = 0.0f;
+  float from_scale = 1.0f;  // that vertex's factor on the light pdf (mis_light_scale)
+  MisPilot pilot = mis_pilot_start();  // the pilot's sums (params.pilot), else unused
   // Russian roulette's verdict on the path beyond `ray`'s hit: 1 / p to go on, 0 to end
   // after the emission that `ray` finds (below: decided before the ray is traced).
   float survive = 1.0f;
@@ -44,8 +49,9 @@ vec3 Li(Ray ray) {
     Hit hit = intersect_scene(ray, kInfinity);
     if (hit.kind == kPrimNone) {
       // The sky: in full after a delta bounce, else weighed against sampling it as a light.
-      float w = specular ? 1.0f : power_heuristic(bsdf_pdf, sky_light_pdf(from_n, ray.dir));
+      float w = specular ? 1.0f : power_heuristic(bsdf_pdf, from_scale * sky_light_pdf(from_n, ray.dir));
       L += beta * vec3(params.sky) * w;
+      pilot = mis_pilot_found(pilot, beta * vec3(params.sky));
       break;
     }
     Surface surface = surface_at(ray, hit);
@@ -55,9 +61,10 @@ vec3 Li(Ray ray) {
       // Emission found by a BSDF sample, weighed against the light sample that could have
       // found it; in full on camera rays and after delta bounces (no light sample there).
       float w = 1.0f;
-      if (!specular) w = power_heuristic(bsdf_pdf, light_pdf(from_p, ray.dir, hit, length(surface.p - from_p)));
+      if (!specular) w = power_heuristic(bsdf_pdf, from_scale * light_pdf(from_p, ray.dir, hit, length(surface.p - from_p)));
       L += beta * Le * w;
     }
+    pilot = mis_pilot_found(pilot, beta * Le);
     // The depth cap, or the roulette's verdict (drawn before this ray was traced, below),
     // ends the path after the emission its last ray found: a path of N bounces gets its
     // direct light from both strategies, as stage4's from its one.
@@ -79,13 +86,17 @@ vec3 Li(Ray ray) {
     } else {
       // The light sample: direct light as in stage4, weighed against the BSDF sample that
       // could have found the same point (a point light is a delta: the light sample only).
+      float scale = mis_light_scale(lobe);
       LightSample ls = sample_light_by(surface.p, n, kTriangleBySolidAngle);
       vec3 wl = frame_to_local(frame, ls.wi);
       vec3 f = eval_lobe(lobe, material, wo, wl);
+      vec3 direct = vec3(0.0f);  // what the light sample alone finds (the pilot's X_l)
       if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f && !occluded(surface.p, surface.n, ls)) {
-        float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, lobe_pdf(lobe, material, wo, wl)) : 1.0f;
-        L += beta * f * ls.weight * (wl.z * w);
+        direct = beta * f * ls.weight * wl.z;
+        float w = ls.pdf > 0.0f ? power_heuristic(scale * ls.pdf, lobe_pdf(lobe, material, wo, wl)) : 1.0f;
+        L += direct * w;
       }
+      if (ls.pdf > 0.0f) pilot = mis_pilot_vertex(pilot, lobe, direct);  // not a delta light
       // The BSDF sample, as in stage3 (Eq. 4): it continues the path, and the emission it
       // finds at the next hit counts with its weight (above).
       LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
@@ -97,6 +108,7 @@ vec3 Li(Ray ray) {
       from_p = surface.p;
       from_n = n;
       bsdf_pdf = s.pdf;
+      from_scale = scale;
     }
 
     ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
@@ -110,5 +122,5 @@ vec3 Li(Ray ray) {
     survive = 1.0f;  // at the depth cap the path ends before the roulette would draw
     if (depth + 1u != params.depth_cap) survive = russian_roulette(roulette_weight(beta, eta_scale), params.roulette);
   }
-  return L;
+  return params.pilot == 0u ? L : mis_pilot_found(pilot, vec3(0.0f)).sums;
 }

@@ -122,6 +122,14 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
         ->capture_default_str()->check(CLI::Range(1u, 1000000u));
   }
 
+  std::string mis = "pilot";
+  if (stage.has_mis) {
+    app.add_option("--mis", mis,
+                   "MIS weights: pilot (the power heuristic with each strategy counted by the inverse of its error, "
+                   "measured by a small pilot render first) or power (Veach's power heuristic); both unbiased")
+        ->capture_default_str()->check(CLI::IsMember({"pilot", "power"}));
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -145,6 +153,7 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     o.render.spp = 0xffffffffu;
   }
   o.render.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
+  o.render.mis_pilot = mis == "pilot";
   o.render.accel = accel == "none" ? kAccelNone : kAccelBvh;
   o.render.sampler = sampler == "independent" ? kSamplerIndependent : kSamplerSobol;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");

@@ -1,0 +1,71 @@
+// stage5_mis's pilot (see mis_pilot.h).
+#include "common/render/mis_pilot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "common/render/render.h"
+
+namespace pt {
+
+float mis_scale_from(const MisPilotErrors& e) {
+  if (!std::isfinite(e.light) || !std::isfinite(e.bsdf)) return 1.0f;
+  if (!(e.light > 0.0) && !(e.bsdf > 0.0)) return 1.0f;  // no direct light seen
+  if (!(e.light > 0.0)) return kMisScaleMax;
+  if (!(e.bsdf > 0.0)) return kMisScaleMin;
+  const double power = std::round(std::log2(e.bsdf / e.light));
+  return float(std::clamp(std::exp2(power), double(kMisScaleMin), double(kMisScaleMax)));
+}
+
+MisScales run_mis_pilot(Backend& backend, FrameParams params, bool glossy, std::span<glm::vec4> buffer) {
+  MisScales scales;
+  const double shrink = std::min(1.0, double(kMisPilotSide) / double(std::max(params.width, params.height)));
+  scales.width = std::max(1, int(std::lround(params.width * shrink)));
+  scales.height = std::max(1, int(std::lround(params.height * shrink)));
+  const std::size_t pixels = std::size_t(scales.width) * std::size_t(scales.height);
+  std::span<glm::vec4> out = buffer.first(pixels);
+  params.width = uint(scales.width), params.height = uint(scales.height), params.first_row = 0;
+  params.mis_diffuse = params.mis_glossy = 1.0f;
+  const std::uint32_t seed = params.seed;
+  for (uint lobe_class = 0; lobe_class < (glossy ? 2u : 1u); lobe_class++) {
+    params.pilot = 1u + lobe_class;
+    // Two independent renders of the pilot (their own seeds: the render's numbers do not
+    // depend on them), each pixel's means of the two strategies' estimates in each.
+    std::vector<glm::dvec2> mean[2];
+    for (int replica = 0; replica < 2; replica++) {
+      params.seed = seed ^ (replica == 0 ? 0x6d2b79f5u : 0x2545f491u);
+      mean[replica].assign(pixels, glm::dvec2(0.0));
+      for (std::uint64_t done = 0; done < kMisPilotSpp;) {
+        const std::uint64_t n = std::min(pass_end(done), kMisPilotSpp) - done;
+        params.first_sample = uint(done), params.sample_count = uint(n);
+        backend.run_pass(params, out);
+        for (std::size_t i = 0; i < pixels; i++) mean[replica][i] += glm::dvec2(out[i].x, out[i].y) / double(kMisPilotSpp);
+        done += n;
+      }
+    }
+    // (first - second)^2 / 2 estimates the variance of one render's mean, whatever the
+    // sampler: the two are independent (a pixel's halves would not do here: under the Sobol
+    // points they overstate a smooth estimate's error far more than a rough one's).
+    MisPilotErrors errors;
+    for (std::size_t i = 0; i < pixels; i++) {
+      const glm::dvec2 d = mean[0][i] - mean[1][i];
+      errors.light += 0.5 * d.x * d.x, errors.bsdf += 0.5 * d.y * d.y;
+    }
+    (lobe_class == 0 ? scales.diffuse : scales.glossy) = mis_scale_from(errors);
+  }
+  return scales;
+}
+
+std::string mis_summary(const MisScales& m) {
+  auto factor = [](float k) {
+    char text[32];
+    std::snprintf(text, sizeof text, k >= 1.0f ? "x%.0f" : "x1/%.0f", k >= 1.0f ? double(k) : 1.0 / double(k));
+    return std::string(text);
+  };
+  return "[mis pilot: " + std::to_string(m.width) + "x" + std::to_string(m.height) + ", light pdf " +
+         factor(m.diffuse) + " at diffuse, " + factor(m.glossy) + " at glossy vertices]";
+}
+
+}  // namespace pt
