@@ -96,7 +96,8 @@ vec3 Li(Ray ray) {
         float w = ls.pdf > 0.0f ? power_heuristic(scale * ls.pdf, lobe_pdf(lobe, material, wo, wl)) : 1.0f;
         L += direct * w;
       }
-      if (ls.pdf > 0.0f) pilot = mis_pilot_vertex(pilot, lobe, direct);  // not a delta light
+      // The pilot's X_l: what a BSDF sample could also find (a delta light's share is not).
+      pilot = mis_pilot_vertex(pilot, lobe, ls.pdf > 0.0f ? direct : vec3(0.0f));
       // The BSDF sample, as in stage3 (Eq. 4): it continues the path, and the emission it
       // finds at the next hit counts with its weight (above).
       LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
