@@ -13,8 +13,7 @@ int main(int argc, char** argv) {
                                       .default_spp = 64,
                                       .has_roulette = true,
                                       .default_roulette = pt::kRouletteThroughput,
-                                      .sees_point_lights = true,
-                                      .has_mis = true},
+                                      .sees_point_lights = true},
                         stage5::kernels(),
                         {pt::make_cpu_backend, pt::gpu::create_backend, pt::gpu::vulkan_devices}};
   return pt::run_guarded(stage.info.name, [&] {

@@ -33,7 +33,9 @@ int run_guarded(const char* stage, const std::function<int()>& body, int interna
 }
 
 std::optional<Options> read_options(int argc, char** argv, const Stage& stage) {
-  std::optional<Options> options = parse_options(argc, argv, stage.info);
+  StageInfo info = stage.info;
+  info.has_mis = stage.kernels.mis_pilot;  // --mis where the kernel weighs its MIS by a pilot
+  std::optional<Options> options = parse_options(argc, argv, info);
   if (!options) return options;
   install_interrupt_handlers();
   check_image_memory(options->render.width, options->render.height, options->resume);

@@ -19,7 +19,7 @@
 #ifndef PT_MIS_PILOT_GLSL
 #define PT_MIS_PILOT_GLSL
 
-#include "common/kernel/roulette.glsl"
+#include "common/kernel/color.glsl"
 
 // The lobe classes the pilot measures apart (params.pilot = 1 + class).
 const uint kMisClassDiffuse = 0u;
@@ -45,21 +45,17 @@ MisPilot mis_pilot_start() {
   return MisPilot(vec3(0.0f), 0.0f, false);
 }
 
-float pilot_luminance(vec3 c) {
-  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
-}
-
 // A non-delta vertex of lobe `lobe`, whose light sample found x_l (0 if none, occluded or
 // facing away); its BSDF sample's X_b follows (mis_pilot_found).
 MisPilot mis_pilot_vertex(MisPilot pilot, uint lobe, vec3 x_l) {
   if (params.pilot == 0u || mis_class(lobe) + 1u != params.pilot) return pilot;
-  return MisPilot(pilot.sums, pilot_luminance(x_l), true);
+  return MisPilot(pilot.sums, luminance(x_l), true);
 }
 
 // The emission x_b (0 if none) that the BSDF sample of the last vertex found.
 MisPilot mis_pilot_found(MisPilot pilot, vec3 x_b) {
   if (!pilot.pending) return pilot;
-  return MisPilot(pilot.sums + vec3(pilot.pending_l, pilot_luminance(x_b), 0.0f), 0.0f, false);
+  return MisPilot(pilot.sums + vec3(pilot.pending_l, luminance(x_b), 0.0f), 0.0f, false);
 }
 
 #endif  // PT_MIS_PILOT_GLSL

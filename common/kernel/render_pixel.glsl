@@ -8,10 +8,7 @@
 
 #include "common/kernel/sampler.glsl"
 #include "common/kernel/camera.glsl"
-
-float luminance(vec3 c) {
-  return dot(c, vec3(0.2126f, 0.7152f, 0.0722f));
-}
+#include "common/kernel/color.glsl"
 
 // Returns (sum of the samples' radiance, sqrt of the sum of their squared luminance); the
 // host squares the latter and adds both up in double precision (film.cpp) for the mean and

@@ -125,16 +125,21 @@ double Film::pixel_standard_error(int x, int y) const {
 }
 
 double Film::per_pixel_relative_error() const {
-  if (spp_ < 2) return 0.0;
-  return relative_rms(per_pixel_error_from_halves() ? halves_variance_sum() : sample_variance_sum());
+  return spp_ < 2 ? 0.0 : relative_rms(per_pixel_variance_sum().sum);
 }
 
 bool Film::per_pixel_error_from_halves() const {
+  return spp_ >= 2 && per_pixel_variance_sum().from_halves;
+}
+
+Film::VarianceSum Film::per_pixel_variance_sum() const {
   // Both are upper bounds of the error under randomised QMC (film.h): the smaller one, the
   // halves' only where enough pixels average its one degree of freedom per pixel.
+  const double samples = sample_variance_sum();
   const bool enough = double(width_) * double(height_) >= double(kMinPixelsForHalves);
-  if (spp_ < 2 || !has_halves() || !enough) return false;
-  return halves_variance_sum() < sample_variance_sum();
+  if (!has_halves() || !enough) return {samples, false};
+  const double halves = halves_variance_sum();
+  return halves < samples ? VarianceSum{halves, true} : VarianceSum{samples, false};
 }
 
 double Film::sample_variance_relative_error() const {

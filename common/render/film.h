@@ -121,6 +121,12 @@ class Film {
   // per-pixel relative error (infinity if it or the image's mean is not finite).
   double sample_variance_sum() const;
   double halves_variance_sum() const;
+  // The one of the two that per_pixel_relative_error() takes, and whether it is the halves'.
+  struct VarianceSum {
+    double sum;
+    bool from_halves;
+  };
+  VarianceSum per_pixel_variance_sum() const;
   double relative_rms(double variance_sum) const;
 };
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "common/render/render.h"
+#include "common/render/render.h"  // kMaxPassSamples
 
 namespace pt {
 
@@ -18,6 +18,8 @@ float mis_scale_from(const MisPilotErrors& e) {
   const double power = std::round(std::log2(e.bsdf / e.light));
   return float(std::clamp(std::exp2(power), double(kMisScaleMin), double(kMisScaleMax)));
 }
+
+static_assert(kMisPilotSpp <= kMaxPassSamples, "the pilot is one pass");
 
 MisScales run_mis_pilot(Backend& backend, FrameParams params, bool glossy, std::span<glm::vec4> buffer) {
   MisScales scales;
@@ -36,14 +38,10 @@ MisScales run_mis_pilot(Backend& backend, FrameParams params, bool glossy, std::
     std::vector<glm::dvec2> mean[2];
     for (int replica = 0; replica < 2; replica++) {
       params.seed = seed ^ (replica == 0 ? 0x6d2b79f5u : 0x2545f491u);
-      mean[replica].assign(pixels, glm::dvec2(0.0));
-      for (std::uint64_t done = 0; done < kMisPilotSpp;) {
-        const std::uint64_t n = std::min(pass_end(done), kMisPilotSpp) - done;
-        params.first_sample = uint(done), params.sample_count = uint(n);
-        backend.run_pass(params, out);
-        for (std::size_t i = 0; i < pixels; i++) mean[replica][i] += glm::dvec2(out[i].x, out[i].y) / double(kMisPilotSpp);
-        done += n;
-      }
+      params.first_sample = 0, params.sample_count = uint(kMisPilotSpp);  // one pass (render.h's longest)
+      backend.run_pass(params, out);
+      mean[replica].resize(pixels);
+      for (std::size_t i = 0; i < pixels; i++) mean[replica][i] = glm::dvec2(out[i].x, out[i].y) / double(kMisPilotSpp);
     }
     // (first - second)^2 / 2 estimates the variance of one render's mean, whatever the
     // sampler: the two are independent (a pixel's halves would not do here: under the Sobol

@@ -27,14 +27,13 @@ inline constexpr float kMisScaleMin = 1.0f / 256.0f;
 inline constexpr float kMisScaleMax = 256.0f;
 
 // The pilot's image: the view at most this many pixels on its longer side, and its samples
-// per pixel (a power of two, so that its two halves are each an aligned block of the
-// sequence, a net under the default sampler: film.h).
+// per pixel in each of its two renders (one pass each).
 inline constexpr int kMisPilotSide = 32;
 inline constexpr std::uint64_t kMisPilotSpp = 16;
 
-// One lobe class's pilot, summed over its pixels: ((first half's mean - second half's) / 2)^2
-// of the light strategy's estimate and of the BSDF strategy's, each an estimate of the
-// variance of that pixel's estimate (as Film::halves_variance).
+// One lobe class's pilot, summed over its pixels: (first render's mean - second's)^2 / 2 of
+// the light strategy's estimate and of the BSDF strategy's, each an estimate of the variance
+// of that pixel's estimate under the render's sampler (the two renders are independent).
 struct MisPilotErrors {
   double light = 0.0, bsdf = 0.0;
 };
