@@ -54,6 +54,20 @@ double thread_cpu_seconds() {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
+// The CPU's model name (/proc/cpuinfo), for the run file: a section re-run alone may run
+// on another machine than the rest of the results.
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      std::string name = line.substr(line.find(':') + 1);
+      name.erase(0, name.find_first_not_of(" \t"));
+      return name;
+    }
+  }
+  return "unknown";
+}
+
 std::string load_average() {
   std::ifstream in("/proc/loadavg");
   std::string a, b, c;
@@ -278,6 +292,7 @@ void run_accel(const Config& config) {
   std::ofstream run = open_csv(config, "accel_run.txt");
   run << "date: " << date << "\ncommand: " << config.command << "\nload_before: " << load_before
       << "\nload_after: " << load_average() << "\nseconds: " << fixed(seconds_since(start), 0)
+      << "\nmachine: " << cpu_model() << ", " << cores() << " cores"
       << "\nthreads: " << cores() << "\nseconds_per_method: " << config.accel_seconds << "\ncamera_rays: " << camera.size() << " (" << config.accel_size << "x"
       << config.accel_size << ", one random point in each pixel)\ngpu: " << (gpu ? gpu->device() : "none")
       << "\nembree: " << (EmbreeScene::available() ? EmbreeScene::version() : EmbreeScene::missing_reason()) << "\n";

@@ -15,7 +15,8 @@ between runs. Every table comes from the CSV files in the folder, so a run of on
 (pt_bench --section accel) keeps the others' tables as their last full run left them. When
 the error section was re-run alone, docs/results/error_run.txt says so in one line that starts
 with its date (the command, its load and time after it): the header quotes it and the error
-tables carry that date."""
+tables carry that date. The machine is the run's (docs/results/machine.txt from bench/run.sh,
+the accel section's own in accel_run.txt), not the one the report is made on."""
 import argparse
 import csv
 import datetime
@@ -155,7 +156,11 @@ def main():
         sys.exit("report.py: no CSV files in %s; run build/bin/pt_bench first (bench/run.sh)" % a.results)
     runs = group_runs(conv)
     scenes = list(OrderedDict.fromkeys(k[0] for k in runs))
+    # The machine of the run (machine.txt, written by bench/run.sh), not the one making this
+    # report: a report made again elsewhere must not move the numbers to another machine.
     model, cores = machine()
+    run_machine = small_file(a.results, "machine.txt") if os.path.exists(os.path.join(a.results, "machine.txt")) \
+        else "not recorded with the run (this report was made on %s, %s cores)" % (model, cores)
     gpu_devices = sorted({r["device"] for r in conv + speed if r.get("backend") == "gpu"})
 
     error_run = small_file(a.results, "error_run.txt") if os.path.exists(os.path.join(a.results, "error_run.txt")) else ""
@@ -164,7 +169,7 @@ def main():
     md = ["# Results: speed against accuracy", "",
           "Made by `%s` (bench/run.sh: `build/bin/pt_bench`, then `bench/report.py`) on %s." %
           (a.command, bench_date), "",
-          "- Machine: %s, %s cores; GPU backend: %s." % (model, cores, ", ".join(gpu_devices) or "none"),
+          "- Machine: %s; GPU backend: %s." % (run_machine, ", ".join(gpu_devices) or "none"),
           "- Load average (1, 5, 15 min) before the run: %s, after: %s; the run took %s s. A load above "
           "the core count means other jobs shared the cores: wall times are then longer than the "
           "machine's own (the speed section also gives rates by CPU time)." %
@@ -206,7 +211,7 @@ def main():
                     rows[-1]["spp"], float(rows[-1]["rel_rmse"]), samples_per_s(rows), s[0], s[1]))
             md.append("")
 
-        md += error_targets_section(runs, error_run.split()[0] if error_run else bench_date)
+        md += error_targets_section(runs, error_run.split()[0].rstrip(":,") if error_run else bench_date)
 
         md += ["## Efficiency ratios and CPU against GPU", "",
                "Efficiency 1/(MSE x time) at each run's last checkpoint; a ratio above 1 means the later "

@@ -85,9 +85,10 @@ def accel_section(rows, builds, run, out_dir):
 
     md = ["## Acceleration structure (issue 17): rays per second against the triangle count", "",
           "Made by `%s` on %s; load average (1, 5, 15 min) before: %s, after: %s; the section took %s s. "
-          "Machine as above; %s CPU threads; GPU backend: %s; %s." % (
+          "Machine: %s; %s CPU threads; GPU backend: %s; %s." % (
               run.get("command", "?"), run.get("date", "?"), run.get("load_before", "?"),
-              run.get("load_after", "?"), run.get("seconds", "?"), threads, gpu, run.get("embree", "no Embree")), "",
+              run.get("load_after", "?"), run.get("seconds", "?"), run.get("machine", "not recorded"), threads, gpu,
+              run.get("embree", "no Embree")), "",
           "The scenes: builtin:cornell (36 triangles), then the Cornell room (its walls and light, 12 triangles) "
           "with an icosphere in place of the two boxes (bench/accel_scene.cpp, placed as bench/make_sphere_mesh.py "
           "places it). Camera rays: %s, from a pinhole camera that frames the sphere (it fills 90%% of the image "

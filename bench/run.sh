@@ -16,6 +16,8 @@ echo "bench: $COMMAND" >&2
 # The load of the machine before and after: other jobs on the same cores slow every number.
 cut -d' ' -f1-3 /proc/loadavg > "$OUT/load_before.txt"
 date -u +%Y-%m-%d > "$OUT/bench_date.txt"
+# The machine the numbers are of (bench/report.py prints it; a report made elsewhere keeps it).
+echo "$(lscpu | sed -n 's/^Model name: *//p' | head -n 1), $(nproc) cores" > "$OUT/machine.txt"
 start=$(date +%s)
 # shellcheck disable=SC2086
 $COMMAND
