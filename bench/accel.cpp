@@ -292,7 +292,7 @@ void run_accel(const Config& config) {
   std::ofstream run = open_csv(config, "accel_run.txt");
   run << "date: " << date << "\ncommand: " << config.command << "\nload_before: " << load_before
       << "\nload_after: " << load_average() << "\nseconds: " << fixed(seconds_since(start), 0)
-      << "\nmachine: " << cpu_model() << ", " << cores() << " cores"
+      << "\nmachine: " << cpu_model()
       << "\nthreads: " << cores() << "\nseconds_per_method: " << config.accel_seconds << "\ncamera_rays: " << camera.size() << " (" << config.accel_size << "x"
       << config.accel_size << ", one random point in each pixel)\ngpu: " << (gpu ? gpu->device() : "none")
       << "\nembree: " << (EmbreeScene::available() ? EmbreeScene::version() : EmbreeScene::missing_reason()) << "\n";

@@ -158,9 +158,10 @@ def main():
     scenes = list(OrderedDict.fromkeys(k[0] for k in runs))
     # The machine of the run (machine.txt, written by bench/run.sh), not the one making this
     # report: a report made again elsewhere must not move the numbers to another machine.
-    model, cores = machine()
-    run_machine = small_file(a.results, "machine.txt") if os.path.exists(os.path.join(a.results, "machine.txt")) \
-        else "not recorded with the run (this report was made on %s, %s cores)" % (model, cores)
+    if os.path.exists(os.path.join(a.results, "machine.txt")):
+        run_machine = small_file(a.results, "machine.txt")
+    else:
+        run_machine = "not recorded with the run (this report was made on %s, %s cores)" % machine()
     gpu_devices = sorted({r["device"] for r in conv + speed if r.get("backend") == "gpu"})
 
     error_run = small_file(a.results, "error_run.txt") if os.path.exists(os.path.join(a.results, "error_run.txt")) else ""
