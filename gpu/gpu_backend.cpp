@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/base/error.h"
+#include "common/render/memory.h"
 #include "common/render/render.h"
 #include "common/scene/bvh.h"
 #include "common/scene/scene.h"
@@ -29,12 +30,10 @@ constexpr uint64_t kPixelSamplesPerDispatch = 1u << 22;  // about 4 million came
 constexpr uint64_t kFenceTimeoutNs = 120'000'000'000;    // a dispatch that takes 2 minutes is hung
 
 std::string megabytes(VkDeviceSize bytes) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.3g MB", double(bytes) / 1e6);
-  return text;
+  return memory_size_words(bytes);  // "134 MB", "4.3 GB"
 }
 
-class GpuBackend : public Backend {
+class GpuBackend : public Backend, public DeviceMemoryLimits {
  public:
   GpuBackend(const StageKernels& kernels, const std::string& device)
       : context_(device), kernels_(kernels) {
@@ -103,6 +102,40 @@ class GpuBackend : public Backend {
     std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
     if (!pipeline) pipeline = std::make_unique<ComputePipeline>(context_, kernels_.spirv, features, uniform.constant);
     pipeline_ = pipeline.get();
+  }
+
+  // Before anything is built or allocated (common/render/memory.h): each buffer that
+  // set_scene() and run_pass() will make against the device's limits, as they check them,
+  // and all of them together against its memory.
+  void check_device_memory(const Scene& scene, uint features, std::uint64_t pixels, const Bvh* bvh) const override {
+    VkDeviceSize total = 0;
+    auto need = [&](std::uint64_t count, std::uint64_t size, const char* what, bool texels = false) {
+      VkDeviceSize bytes = 0;
+      if (__builtin_mul_overflow(count, size, &bytes)) bytes = ~VkDeviceSize(0);
+      check_range(bytes, what);
+      if (texels) check_texels(bytes, what);
+      total = std::min(total + bytes, ~VkDeviceSize(0) / 2);
+    };
+    const bool textured = (features & kFeatureTextures) && uses_textures(scene);
+    need(scene.triangles.size(), sizeof(Triangle), "the scene's triangles need");
+    need(scene.spheres.size(), sizeof(Sphere), "the scene needs");
+    need(scene.materials.size(), sizeof(Material), "the scene needs");
+    need(scene.point_lights.size(), sizeof(PointLight), "the scene needs");
+    need(scene.lights.size(), sizeof(Light), "the scene needs");
+    if (bvh && !bvh->nodes.empty()) {
+      need(bvh->nodes.size(), sizeof(BvhNode), "the BVH's nodes need", true);
+      need(bvh->indices.size(), sizeof(uint), "the BVH's triangle list needs");
+    }
+    if (textured) {
+      need(scene.triangle_attributes.size(), sizeof(TriangleAttributes), "the vertex attributes need");
+      need(scene.texels.size(), sizeof(uint), "the textures need");
+    }
+    need(pixels, sizeof(glm::vec4), "the image needs");
+    if (total > context_.heap_size()) {
+      throw Error(kExitNoDevice, "the render needs " + megabytes(total) + " of buffers in all but device '" +
+                                     context_.device_name() + "' has " + megabytes(context_.heap_size()) +
+                                     "; render a smaller image or scene, or use --backend cpu");
+    }
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {

@@ -7,7 +7,8 @@
 // article's estimators being means of independent samples, whose noise the film measures.
 //   pt_compare [--alpha A] [--region PIXELS] [--zmap PATH.png|.exr] REF.exr TEST.exr
 // Exit 0: consistent; 1: not consistent; 2: a bad option; 3: an input that cannot be
-// compared (not a stage's .exr, fewer than 2 spp, another size); 5: --zmap not writable.
+// compared (not a stage's .exr, fewer than 2 spp, another size, damaged or edited: its
+// pt:checksum or its sample count disagrees, common/app/film_file.h); 5: --zmap not writable.
 // An internal error exits 3 too, never 1, which would read as a verdict.
 #include <algorithm>
 #include <cctype>
@@ -22,6 +23,7 @@
 #include "common/app/app.h"
 #include "common/app/film_file.h"
 #include "common/app/image_output.h"
+#include "common/app/replace_file.h"
 #include "common/base/error.h"
 
 namespace {
@@ -59,14 +61,7 @@ pt::OutputFile zmap_file(const std::string& path) {
                                               "'; use a name ending in .png (a picture) or .exr (the z values)");
     }
   }
-  try {
-    return pt::OutputFile(path);
-  } catch (const pt::Error& e) {  // OutputFile speaks of --out
-    std::string message = e.what();
-    for (std::size_t at = message.find("--out"); at != std::string::npos; at = message.find("--out", at + 1))
-      message.replace(at, 5, "--zmap");
-    throw pt::Error(e.code(), message);
-  }
+  return pt::OutputFile(path, "--zmap");
 }
 
 int run(int argc, char** argv) {
@@ -105,12 +100,23 @@ int run(int argc, char** argv) {
     throw pt::Error(pt::kExitBadOption, what.substr(0, what.find('\n')) + "; " + kUsage);
   }
   std::optional<pt::OutputFile> zmap;
-  if (!zmap_path.empty()) zmap.emplace(zmap_file(zmap_path));
+  if (!zmap_path.empty()) {
+    zmap.emplace(zmap_file(zmap_path));
+    for (const std::string& input : {ref_path, test_path}) {
+      if (pt::same_file(zmap_path, input)) {
+        throw pt::Error(pt::kExitBadOption, "--zmap '" + zmap_path + "' is the same file as the input '" + input +
+                                                "'; give the z-map its own name");
+      }
+    }
+  }
 
   const pt::FilmPart ref = pt::read_comparable(ref_path);
   const pt::FilmPart test = pt::read_comparable(test_path);
   pt::check_comparable(ref.film, "'" + ref_path + "'", test.film, "'" + test_path + "'");
   const pt::Comparison c = pt::compare_films(ref.film, test.film, settings);
+  for (const pt::FilmPart* p : {&ref, &test}) {  // a part written before parts carried a checksum
+    if (!p->checksummed) std::fprintf(stderr, "pt_compare: %s\n", pt::unchecked_note(*p).c_str());
+  }
 
   std::printf("pt_compare: %s against %s, %dx%d, on luminance\n", describe(ref).c_str(), describe(test).c_str(),
               c.width, c.height);

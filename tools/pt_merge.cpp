@@ -2,11 +2,15 @@
 // comparing"): each part is an .exr that a stage wrote with --out after rendering some
 // --samples FIRST:COUNT range; the merge is the render of all their samples, bit for bit
 // where the parts split at the pass ends of one run, else equal to float rounding. Parts of
-// another scene, stage, option set or seed, and samples held twice, are refused. Not in the
-// article: its estimators are sums of independent samples, which makes this exact.
+// another scene, stage, option set or seed, and samples held twice, are refused, as are an
+// --out that is one of the parts and a part whose header or film is damaged or was edited
+// (film_file.h). Not in the article: its estimators are sums of independent samples, which
+// makes this exact.
 //   pt_merge --out MERGED.exr PART.exr...
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -14,6 +18,7 @@
 #include "common/app/app.h"
 #include "common/app/film_file.h"
 #include "common/app/image_output.h"
+#include "common/app/replace_file.h"
 #include "common/base/error.h"
 
 namespace {
@@ -36,6 +41,14 @@ int run(int argc, char** argv) {
   }
   if (!pt::OutputFile::is_exr(out_path)) {
     throw pt::Error(pt::kExitBadOption, "--out '" + out_path + "' is not an .exr: the merge is a part too; name it *.exr");
+  }
+  // The merge must not replace a part: --out may name one by another spelling, through a
+  // symbolic link or as a hard link, which the same device and inode reveal.
+  for (const std::string& part : inputs) {
+    if (pt::same_file(out_path, part)) {
+      throw pt::Error(pt::kExitBadOption, "--out '" + out_path + "' is the same file as the part '" + part +
+                                              "': the merge would replace it; write the merge to a new file");
+    }
   }
   const pt::OutputFile out(out_path);  // checked before reading the parts
   std::vector<pt::FilmPart> parts;

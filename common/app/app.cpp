@@ -10,10 +10,12 @@
 
 #include "common/app/checkpoint.h"
 #include "common/app/error_map.h"
+#include "common/app/replace_file.h"
 #include "common/base/error.h"
 #include "common/render/interrupt.h"
 #include "common/render/memory.h"
 #include "common/scene/scene_loading.h"
+#include "common/scene/scene_sanity.h"
 
 namespace pt {
 
@@ -23,8 +25,10 @@ int run_guarded(const char* stage, const std::function<int()>& body, int interna
   } catch (const Error& e) {
     std::fprintf(stderr, "%s: %s\n", stage, e.what());
     return e.code();
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%s: out of memory; render a smaller image or scene\n", stage);
+  } catch (const std::bad_alloc&) {  // past the estimate (common/render/memory.h): say where
+    const std::string step = MemoryStep::current();
+    std::fprintf(stderr, "%s: out of memory%s; render a smaller image or scene, or give it more memory\n", stage,
+                 step.empty() ? "" : (" while " + step).c_str());
     return kExitBadOption;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: internal error: %s; please report it with the command line\n", stage, e.what());
@@ -32,13 +36,46 @@ int run_guarded(const char* stage, const std::function<int()>& body, int interna
   }
 }
 
+namespace {
+
+// Where --checkpoint saves: the checkpoint --resume continues, else <out>.ckpt.
+std::string checkpoint_path(const Options& options) { return options.resume ? options.resume_path : options.out + ".ckpt"; }
+
+void refuse_shared_outputs(const Options& options) {
+  // Files a run writes or reads, each under the option that names it: no two may be one file.
+  std::vector<std::pair<std::string, std::string>> files = {{"--out", options.out}};
+  if (!options.error_map.empty()) files.emplace_back("--error-map", options.error_map);
+  if (options.resume) files.emplace_back("--resume", options.resume_path);
+  for (std::size_t i = 0; i < files.size(); i++) {
+    for (std::size_t j = i + 1; j < files.size(); j++) {
+      if (same_file(files[i].second, files[j].second)) {
+        throw Error(kExitBadOption, files[j].first + " '" + files[j].second + "' is the same file as " +
+                                        files[i].first + " '" + files[i].second + "'; give each its own name");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// The render as its memory sees it (common/render/memory.h); gpu: the backend that renders it.
+FramePlan frame_plan(const Options& o, const Scene* scene, bool gpu) {
+  return {o.render.width, o.render.height, o.resume, gpu, o.out, o.error_map, scene, o.render.accel == kAccelBvh,
+          o.keep_halves, o.threads};
+}
+
+}  // namespace
+
 std::optional<Options> read_options(int argc, char** argv, const Stage& stage) {
   StageInfo info = stage.info;
   info.has_mis = stage.kernels.mis_pilot;  // --mis where the kernel weighs its MIS by a pilot
   std::optional<Options> options = parse_options(argc, argv, info);
   if (!options) return options;
   install_interrupt_handlers();
-  check_image_memory(options->render.width, options->render.height, options->resume);
+  check_memory(frame_plan(*options, nullptr, options->backend == "gpu"));  // the image's part, before the scene
+  refuse_shared_outputs(*options);
   if (!options->error_map.empty()) error_map_file(options->error_map);  // exit 2 or 5 now, not after the render
   return options;
 }
@@ -46,9 +83,11 @@ std::optional<Options> read_options(int argc, char** argv, const Stage& stage) {
 namespace {
 
 // The camera: --camera's choice, or the first met (saying so when there are others), or
-// one that frames the bounds (saying so).
+// one that frames the bounds (saying so): where the file has none, or with --frame.
 void choose_camera(Scene& scene, const Options& options, const char* stage) {
-  if (!options.camera.empty()) {
+  if (options.frame) {
+    scene.camera.reset();  // --frame: the bounds framed, whatever cameras the file has
+  } else if (!options.camera.empty()) {
     select_camera(scene, options.camera);
   } else if (scene.cameras.size() > 1) {
     const SceneCamera& first = scene.cameras.front();
@@ -59,10 +98,15 @@ void choose_camera(Scene& scene, const Options& options, const char* stage) {
   if (!scene.camera) {
     CameraDesc framing = frame_bounds(scene.bounds(), float(options.render.width) / float(options.render.height));
     glm::vec3 eye(framing.to_world[3]);
-    std::fprintf(stderr,
-                 "%s: %s has no camera: framing its bounds from a raised three-quarter view (eye at %.4g, %.4g, "
-                 "%.4g); add a camera to the file to choose the view\n",
-                 stage, scene.name.c_str(), eye.x, eye.y, eye.z);
+    if (options.frame) {
+      std::fprintf(stderr, "%s: --frame: framing the bounds of %s from a raised three-quarter view (eye at %.4g, %.4g, %.4g)\n",
+                   stage, scene.name.c_str(), eye.x, eye.y, eye.z);
+    } else {
+      std::fprintf(stderr,
+                   "%s: %s has no camera: framing its bounds from a raised three-quarter view (eye at %.4g, %.4g, "
+                   "%.4g); add a camera to the file to choose the view\n",
+                   stage, scene.name.c_str(), eye.x, eye.y, eye.z);
+    }
   }
 }
 
@@ -76,7 +120,7 @@ void apply_aspect_ratio(const Scene& scene, Options& options, const char* stage)
   if (options.width_given != options.height_given) {
     if (options.width_given) r.height = side(r.width / ratio);
     else r.width = side(r.height * ratio);
-    check_image_memory(r.width, r.height, options.resume);
+    check_memory(frame_plan(options, nullptr, options.backend == "gpu"));
     std::fprintf(stderr, "%s: the camera's aspectRatio %.4g sets the image to %d x %d\n", stage, ratio, r.width,
                  r.height);
     return;
@@ -118,7 +162,8 @@ void warn_about_lights(const Scene& scene, const Options& options, const Stage& 
 }  // namespace
 
 Scene load_stage_scene(Options& options, const Stage& stage) {
-  Scene scene = load_scene(options.scene);
+  set_scene_memory_budget(available_memory_bytes());  // the glTF loader's triangle budget (scene_sanity.h)
+  Scene scene = load_scene(options.scene, options.gltf_scene);
   choose_camera(scene, options, stage.info.name);
   apply_aspect_ratio(scene, options, stage.info.name);
   warn_about_lights(scene, options, stage);
@@ -189,8 +234,6 @@ std::unique_ptr<Backend> choose_backend(const Options& options, const Stage& sta
 
 namespace {
 
-std::string checkpoint_path(const Options& options) { return options.out + ".ckpt"; }
-
 // The image's metadata, and for an .exr what identifies the render (film_file.h): the
 // scene's content hash is computed only for an .exr, which is the one that carries it.
 ImageMetadata part_metadata(const char* stage, const Options& options, const Backend& backend, const Scene& scene,
@@ -213,11 +256,31 @@ RenderResult resumed_state(const Options& options, const Stage& stage, std::uint
   return state;
 }
 
+// What the render needs, checked before anything large is made (common/render/memory.h):
+// the device's limits (bvh: nullptr before the BVH is built), then the host's memory. Under
+// --backend auto a device that cannot hold the render gives way to the CPU.
+void check_frame_memory(std::unique_ptr<Backend>& backend, const Scene& scene, const Options& options,
+                        const Stage& stage, const Bvh* bvh) {
+  const RenderSettings& s = options.render;
+  if (const auto* device = dynamic_cast<const DeviceMemoryLimits*>(backend.get())) {
+    try {
+      device->check_device_memory(scene, s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky),
+                                  std::uint64_t(s.width) * std::uint64_t(s.height), bvh);
+    } catch (const Error& e) {
+      if (e.code() != kExitNoDevice || options.backend != "auto") throw;
+      std::fprintf(stderr, "%s: %s; --backend auto falls back to the CPU\n", stage.info.name, e.what());
+      backend = stage.backends.cpu(stage.kernels, options.threads);
+    }
+  }
+  if (!bvh) check_memory(frame_plan(options, &scene, backend->kind() == "gpu"));
+}
+
 }  // namespace
 
 RenderResult render_frame(std::unique_ptr<Backend>& backend, const Scene& scene, const Options& options,
                           const Stage& stage) {
   const char* name = stage.info.name;
+  check_frame_memory(backend, scene, options, stage, nullptr);
   // The checkpoint's key hashes the whole scene (82 MB for a million triangles): only when
   // a checkpoint is written or read.
   const bool checkpoints = options.resume || options.checkpoint > 0.0;
@@ -226,7 +289,10 @@ RenderResult render_frame(std::unique_ptr<Backend>& backend, const Scene& scene,
   hooks.progress = true;
   hooks.label = name;
   std::optional<RenderResult> resumed;
-  if (options.resume) hooks.resume = &resumed.emplace(resumed_state(options, stage, key));
+  if (options.resume) {
+    MemoryStep step("reading the checkpoint '" + options.resume_path + "'");
+    hooks.resume = &resumed.emplace(resumed_state(options, stage, key));
+  }
   if (options.checkpoint > 0.0) {
     hooks.save_seconds = options.checkpoint;
     // A checkpoint that cannot be written (a full disk) must not end the render.
@@ -240,7 +306,12 @@ RenderResult render_frame(std::unique_ptr<Backend>& backend, const Scene& scene,
   }
   // The BVH once, before the first pass: a fallback to the CPU searches the same one.
   std::optional<Bvh> bvh;
-  if (options.render.accel == kAccelBvh && !scene.triangles.empty()) hooks.bvh = &bvh.emplace(build_bvh(scene.triangles));
+  if (options.render.accel == kAccelBvh && !scene.triangles.empty()) {
+    MemoryStep step("building the BVH");
+    hooks.bvh = &bvh.emplace(build_bvh(scene.triangles));
+    check_frame_memory(backend, scene, options, stage, hooks.bvh);
+  }
+  MemoryStep step("rendering");
   RenderResult result = render(*backend, scene, options.render, hooks);
   if (!result.device_error.empty() && options.backend == "auto" && backend->kind() == "gpu") {
     // The device failed: never retried; the CPU goes on from the samples done.
@@ -259,6 +330,7 @@ int write_result(const OutputFile& out, const Options& options, const Backend& b
                  const RenderResult& result, const Stage& stage) {
   const char* name = stage.info.name;
   const std::uint64_t spp = result.film.spp();
+  MemoryStep step("writing the image '" + options.out + "'");
   if (!result.device_error.empty()) {
     // --backend gpu: the samples done so far are written, then the device's error, exit 4.
     if (spp > 0) {
@@ -273,6 +345,7 @@ int write_result(const OutputFile& out, const Options& options, const Backend& b
   out.write(result.film.mean_rgb(), options.render.width, options.render.height,
             part_metadata(name, options, backend, scene, result), options.exposure);
   if (!options.error_map.empty()) {
+    MemoryStep map_step("writing the error map '" + options.error_map + "'");
     write_error_map(error_map_file(options.error_map), result.film, options.render.target_error,
                     image_metadata(name, options, backend, result));
   }

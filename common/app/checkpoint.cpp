@@ -4,17 +4,13 @@
 // last an FNV-1a hash of every byte before it, which finds truncation and damage.
 #include "common/app/checkpoint.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <vector>
 
+#include "common/app/replace_file.h"
 #include "common/base/error.h"
-#include "common/render/interrupt.h"
 #include "common/scene/scene.h"
 
 namespace pt {
@@ -52,23 +48,6 @@ struct Fnv {
 
 [[noreturn]] void refuse(const std::string& path, const std::string& why, const std::string& todo) {
   throw Error(kExitBadOption, "checkpoint '" + path + "' " + why + "; " + todo);
-}
-
-void write_all(int fd, const void* data, std::size_t bytes, const std::string& path, const fs::path& tmp) {
-  const char* p = static_cast<const char*>(data);
-  while (bytes > 0) {
-    ssize_t n = ::write(fd, p, bytes);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      std::string why = std::strerror(errno);
-      ::close(fd);
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      set_file_in_progress("");
-      throw Error(kExitOutput, "cannot write checkpoint '" + path + "': " + why + "; free some space or choose another --out folder");
-    }
-    p += n, bytes -= std::size_t(n);
-  }
 }
 
 }  // namespace
@@ -131,38 +110,21 @@ void save_checkpoint(const std::string& path, std::uint64_t key, const char* sta
   f.add(&h, sizeof h);
   f.add(sums.data(), sums.size() * sizeof(double));
 
-  fs::path target(path);
-  fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  fs::path tmp = folder / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
-  set_file_in_progress(tmp.c_str());  // a second Ctrl-C removes it
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) {
-    set_file_in_progress("");
-    throw Error(kExitOutput, "cannot write checkpoint '" + path + "': " + std::strerror(errno) +
-                                 "; choose another --out folder or fix its permissions");
-  }
-  write_all(fd, &h, sizeof h, path, tmp);
-  write_all(fd, sums.data(), sums.size() * sizeof(double), path, tmp);
-  write_all(fd, &f.h, sizeof f.h, path, tmp);
-  // On the disk before the rename: the checkpoint is the old one or the new one, whole.
-  ::fsync(fd);
-  ::close(fd);
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  set_file_in_progress("");
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw Error(kExitOutput, "cannot write checkpoint '" + path + "': renaming it failed; choose another --out folder");
-  }
-  int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
-  if (dir >= 0) ::fsync(dir), ::close(dir);
+  // The old checkpoint stays whole until the new one is on the disk (replace_file.h).
+  replace_file(path, {{&h, sizeof h}, {sums.data(), sums.size() * sizeof(double)}, {&f.h, sizeof f.h}},
+               "free some space or choose another --out folder", "checkpoint");
 }
 
 RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const char* stage, int width, int height,
                              std::uint64_t first_sample) {
   const std::string redo = "delete it and render again without --resume";
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::is_directory(status)) refuse(path, "is a folder", "give --resume the checkpoint file's path");
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    refuse(path, "is not a regular file", "give --resume the checkpoint file's path");
+  }
+  if (!fs::is_regular_file(status)) {
     refuse(path, "does not exist", "render with --checkpoint SECONDS first, or give --resume the checkpoint's path");
   }
   std::uintmax_t size = fs::file_size(path, ec);

@@ -10,16 +10,7 @@
 
 namespace pt {
 
-OutputFile error_map_file(const std::string& path) {
-  try {
-    return OutputFile(path);
-  } catch (const Error& e) {  // OutputFile speaks of --out
-    std::string message = e.what();
-    for (std::size_t at = message.find("--out"); at != std::string::npos; at = message.find("--out", at + 1))
-      message.replace(at, 5, "--error-map");
-    throw Error(e.code(), message);
-  }
-}
+OutputFile error_map_file(const std::string& path) { return OutputFile(path, "--error-map"); }
 
 namespace {
 

@@ -3,13 +3,18 @@
 
 #include <algorithm>
 #include <exception>
+#include <new>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfIO.h>
 #include <ImfStringAttribute.h>
+
+#include "common/app/replace_file.h"
+#include "common/base/error.h"
 
 namespace pt {
 namespace {
@@ -26,6 +31,23 @@ std::string first_line(const char* what) {
 constexpr long kMaxSide = 65536;
 constexpr std::size_t kMaxChannels = 64;
 
+// An OpenEXR output stream into memory (OpenEXR seeks back to write its line offsets).
+class MemoryStream final : public Imf::OStream {
+ public:
+  explicit MemoryStream(std::vector<char>& bytes) : Imf::OStream("memory"), bytes_(bytes) {}
+  void write(const char c[], int n) override {
+    if (position_ + std::size_t(n) > bytes_.size()) bytes_.resize(position_ + std::size_t(n));
+    std::copy(c, c + n, bytes_.begin() + std::ptrdiff_t(position_));
+    position_ += std::size_t(n);
+  }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t pos) override { position_ = std::size_t(pos); }
+
+ private:
+  std::vector<char>& bytes_;
+  std::size_t position_ = 0;
+};
+
 }  // namespace
 
 int ExrImage::channel(const std::string& name) const {
@@ -40,7 +62,19 @@ std::string ExrImage::attribute(const std::string& name) const {
   return "";
 }
 
-bool write_exr(const std::string& path, const ExrImage& image, std::string& why) {
+void ExrImage::set_attribute(const std::string& name, const std::string& value) {
+  auto it = std::find_if(text.begin(), text.end(), [&](const auto& kv) { return kv.first == name; });
+  if (it == text.end()) {
+    if (!value.empty()) text.emplace_back(name, value);
+  } else if (value.empty()) {
+    text.erase(it);
+  } else {
+    it->second = value;
+  }
+}
+
+bool encode_exr(const ExrImage& image, std::vector<char>& bytes, std::string& why) {
+  bytes.clear();
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
@@ -54,12 +88,32 @@ bool write_exr(const std::string& path, const ExrImage& image, std::string& why)
       char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data() + c));
       frame.insert(image.channels[c], Imf::Slice(type, base, x_stride, y_stride));
     }
-    Imf::OutputFile file(path.c_str(), header);
-    file.setFrameBuffer(frame);
-    file.writePixels(image.height);
+    // Room for the channels uncompressed (a chunk that ZIP does not shrink is stored as it
+    // is) and the header: the bytes never grow by doubling (common/render/memory.cpp).
+    bytes.reserve(std::size_t(image.height) * y_stride + std::size_t(image.height) * 16 + (std::size_t(1) << 20));
+    MemoryStream stream(bytes);
+    {
+      Imf::OutputFile file(stream, header);
+      file.setFrameBuffer(frame);
+      file.writePixels(image.height);
+    }  // the file's destructor writes its line offsets
     return true;
+  } catch (const std::bad_alloc&) {
+    throw;  // not a write error: run_guarded says out of memory, exit 2 (common/render/memory.h)
   } catch (const std::exception& e) {
     why = first_line(e.what());
+    return false;
+  }
+}
+
+bool write_exr(const std::string& path, const ExrImage& image, std::string& why) {
+  std::vector<char> bytes;
+  if (!encode_exr(image, bytes, why)) return false;
+  try {
+    replace_file(path, {{bytes.data(), bytes.size()}}, "free some space or choose another path");
+    return true;
+  } catch (const Error& e) {
+    why = e.what();
     return false;
   }
 }
@@ -103,6 +157,8 @@ bool read_exr(const std::string& path, ExrImage& image, std::string& why) {
     file.setFrameBuffer(frame);
     file.readPixels(0, int(height) - 1);
     return true;
+  } catch (const std::bad_alloc&) {
+    throw;  // not a damaged file: run_guarded says out of memory, exit 2
   } catch (const std::exception& e) {
     why = first_line(e.what());
     return false;

@@ -23,9 +23,15 @@ struct ExrImage {
   int channel(const std::string& name) const;
   // A string attribute's value, or "" when there is none.
   std::string attribute(const std::string& name) const;
+  // Sets a string attribute ("" removes it).
+  void set_attribute(const std::string& name, const std::string& value);
 };
 
-// Writes `image` to `path` with ZIP compression. false: `why` says why in one line.
+// The bytes of `image` as an .exr file with ZIP compression, made in memory (so that the
+// file is written by replace_file.h, which checks every write). false: `why` says why in one line.
+bool encode_exr(const ExrImage& image, std::vector<char>& bytes, std::string& why);
+
+// encode_exr(), then replace_file() over `path`. false: `why` says why in one line.
 bool write_exr(const std::string& path, const ExrImage& image, std::string& why);
 
 // Reads every channel of a scanline or tiled single-part EXR (a half channel as floats) and

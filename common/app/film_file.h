@@ -26,7 +26,9 @@ struct SampleRange {
   std::uint64_t count = 0;
 };
 
-// "0:16,32:16", and back (throws pt::Error(kExitBadScene) naming `where` when malformed).
+// "0:16,32:16", and back: strictly, as format_ranges writes them (throws
+// pt::Error(kExitBadScene) naming `where` and pt:samples when malformed, when a range is
+// empty or ends past kSampleIndexLimit, or when the ranges do not ascend without overlap).
 std::string format_ranges(const std::vector<SampleRange>& ranges);
 std::vector<SampleRange> parse_ranges(const std::string& text, const std::string& where);
 
@@ -49,6 +51,7 @@ struct FilmPart {
   std::vector<SampleRange> ranges;
   Film film{1, 1};
   bool kept_halves = false;  // its .exr had the halves' channels (--keep-halves); a merge: any part's
+  bool checksummed = true;   // false: its .exr has no pt:checksum (written before parts carried one)
 };
 
 // The EXR's channels: R, G, B (the mean radiance), Y.variance (the estimated variance of the
@@ -75,15 +78,38 @@ inline double join_double(std::uint32_t hi, std::uint32_t lo) {
   return v;
 }
 
+// A part's checksum, its text attribute pt:checksum (16 hex digits): the 64-bit FNV-1a hash
+// of checkpoints (checkpoint.h) over the image's size, the attributes that say which render
+// it is and which samples it holds (pt:stage, pt:scene_hash, pt:options, pt:seed,
+// pt:samples, pt:halves), and every channel's name, type and pixels, bit for bit.
+// OutputFile writes it with every film (exr_image() in image_output.cpp); stage and seed are
+// the pt:stage and pt:seed texts, which OutputFile::write adds after exr_image(). It finds
+// damage and edits; it is no signature: whoever edits a part can compute it again, and then
+// only the sample-count checks of film_part_of stand.
+extern const char* const kFilmChecksumAttribute;
+std::string film_checksum(const ExrImage& image, const std::string& stage, const std::string& seed);
+
 // Reads a part, or throws pt::Error(kExitBadScene) naming the file and what is missing.
 FilmPart read_film_part(const std::string& path);
-// The part an .exr already read holds (read_film_part without the reading).
+// The part an .exr already read holds (read_film_part without the reading). Trusts nothing:
+// every number of the header is read strictly (digits only, no sign, nothing after it,
+// within its range; sample ranges ascending, none past kSampleIndexLimit), the checksum
+// must match where there is one, and the sample count pt:samples claims must agree with
+// the film's own numbers: no pixel's sums may need more samples than it claims (by
+// Cauchy-Schwarz, (sum of y)^2 <= N x (sum of y^2)), and the channel Y.variance must be
+// what the sums give with that count. Else pt::Error(kExitBadScene) naming the file and the
+// attribute. A part without pt:checksum is read (FilmPart::checksummed false), and the
+// merge notes it.
 FilmPart film_part_of(const ExrImage& image, const std::string& path);
+
+// The note for a part read without a checksum (FilmPart::checksummed false), or "".
+std::string unchecked_note(const FilmPart& part);
 
 // Adds parts of one render up, in the order of their first samples. Throws
 // pt::Error(kExitBadScene) naming the file and the field for a part of another render
-// (stage, scene, options, seed, size) or samples that two parts both hold; `notes` gets a
-// line for each gap in the samples and for parts of different backends.
+// (stage, scene, options, seed, size), samples that two parts both hold, or a range past
+// kSampleIndexLimit; `notes` gets a line for each gap in the samples, for parts of
+// different backends and for each part without a checksum.
 FilmPart merge_film_parts(std::vector<FilmPart> parts, std::vector<std::string>& notes);
 
 }  // namespace pt

@@ -13,9 +13,9 @@
 #include <system_error>
 
 #include "common/app/exr_file.h"
+#include "common/app/replace_file.h"
 #include "common/base/error.h"
 #include "common/base/openimageio.h"
-#include "common/render/interrupt.h"
 
 namespace pt {
 namespace fs = std::filesystem;
@@ -34,40 +34,51 @@ fs::path folder_of(const std::string& path) {
   return parent.empty() ? fs::path(".") : parent;
 }
 
-// A temporary name beside the target, ending in the target's extension so that
-// the writer is the right one.
-fs::path temporary_name(const std::string& path, const std::string& ext) {
-  fs::path p(path);
-  return folder_of(path) / ("." + p.filename().string() + ".tmp" + std::to_string(::getpid()) + "." + ext);
-}
-
-void fail(const std::string& path, const std::string& why) {
-  throw Error(kExitOutput, "cannot write '" + path + "': " + why +
-                               "; choose another --out path or fix the folder's permissions");
+void fail(const std::string& path, const std::string& why, const std::string& todo) {
+  throw Error(kExitOutput, "cannot write '" + path + "': " + why + "; " + todo);
 }
 
 }  // namespace
 
-OutputFile::OutputFile(std::string path) : path_(std::move(path)), extension_(lower_extension(path_)) {
+OutputFile::OutputFile(std::string path, std::string option)
+    : path_(std::move(path)), option_(std::move(option)), extension_(lower_extension(path_)) {
   if (extension_ != "exr" && extension_ != "png" && extension_ != "hdr") {
-    throw Error(kExitBadOption, "--out '" + path_ + "': unknown image type '." + extension_ +
+    throw Error(kExitBadOption, option_ + " '" + path_ + "': unknown image type '." + extension_ +
                                     "'; use a name ending in .exr, .png or .hdr");
   }
-  if (fs::is_directory(path_)) fail(path_, "it is a folder");
+  const std::string name = fs::path(path_).filename().string();
+  if (name.size() > 255) {
+    throw Error(kExitBadOption, option_ + " '" + path_.substr(0, 60) + "...': its file name is " +
+                                    std::to_string(name.size()) + " bytes, longer than the 255 a file system takes; "
+                                    "choose a shorter name");
+  }
+  const std::string target = output_target(path_, option_);  // a folder, device or FIFO: exit 5
   if (extension_ != "exr") {  // its writer is OpenImageIO's module: found now, not after the render
     std::string why;
     if (!openimageio(why)) throw Error(kExitOutput, "cannot write '" + path_ + "': " + why);
   }
   std::error_code ec;
-  fs::path folder = folder_of(path_);
+  fs::path folder = folder_of(target);
   fs::create_directories(folder, ec);
-  if (ec || !fs::is_directory(folder)) fail(path_, "its folder cannot be created (" + ec.message() + ")");
+  if (ec || !fs::is_directory(folder)) {
+    fail(path_, "its folder cannot be created (" + ec.message() + ")", "choose another " + option_ + " path");
+  }
   // Prove the folder takes a new file now, rather than after an hour of rendering.
-  fs::path probe = temporary_name(path_, extension_);
-  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-  if (fd < 0) fail(path_, std::string("its folder is not writable (") + std::strerror(errno) + ")");
+  const std::string probe = temporary_path(target, long(::getpid()));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    fail(path_, std::string("its folder is not writable (") + std::strerror(errno) + ")",
+         "choose another " + option_ + " path or fix the folder's permissions");
+  }
   ::close(fd);
-  fs::remove(probe, ec);
+  ::unlink(probe.c_str());
+}
+
+void OutputFile::refuse_same_as(const OutputFile& other) const {
+  if (same_file(path_, other.path_)) {
+    throw Error(kExitBadOption, option_ + " '" + path_ + "' is the same file as " + other.option_ + " '" +
+                                    other.path_ + "'; give each output its own name");
+  }
 }
 
 bool OutputFile::is_exr(const std::string& path) { return lower_extension(path) == "exr"; }
@@ -119,64 +130,72 @@ ExrImage exr_image(const std::vector<float>& rgb, int width, int height, const I
     for (int k = 0; k < 4; k++) split_double(film.sums()[4 * p + std::size_t(k)], o[4 + 2 * k], o[5 + 2 * k]);
     if (halves) split_double(film.first_half_luminance()[p], o[12], o[13]);
   }
+  if (meta.film) image.text.emplace_back(kFilmChecksumAttribute, film_checksum(image, meta.stage, std::to_string(meta.seed)));
   return image;
+}
+
+}  // namespace
+
+namespace {
+
+// The pixels' first non-finite value (+Inf from a float overflow, NaN), as an error.
+void refuse_non_finite(const std::vector<float>& rgb, int width, const std::string& path) {
+  std::size_t count = 0, first = 0;
+  for (std::size_t i = 0; i < rgb.size(); i += 3) {
+    if (std::isfinite(rgb[i]) && std::isfinite(rgb[i + 1]) && std::isfinite(rgb[i + 2])) continue;
+    if (count++ == 0) first = i / 3;
+  }
+  if (count == 0) return;
+  throw Error(kExitBadScene, "not writing '" + path + "': " +
+                                 (count == 1 ? std::string("1 pixel is not a finite number")
+                                             : std::to_string(count) + " pixels are not finite numbers") +
+                                 " (the first at x " + std::to_string(first % std::size_t(width)) +
+                                 ", y " + std::to_string(first / std::size_t(width)) +
+                                 "): the scene's radiance overflows a float; lower its emission or light intensity");
 }
 
 }  // namespace
 
 void OutputFile::write(const std::vector<float>& rgb, int width, int height, const ImageMetadata& meta,
                        float exposure) const {
+  refuse_non_finite(rgb, width, path_);
   ImageAttributes text = {
       {"Software", "staged unbiased path tracer, " + meta.stage},
       {"pt:stage", meta.stage},
       {"pt:backend", meta.backend},
       {"pt:scene", meta.scene},
       {"pt:spp", std::to_string(meta.spp)},
-      {"pt:seed", std::to_string(meta.film ? meta.identity.seed : meta.seed)},  // a film's: what the merge compares
+      {"pt:seed", std::to_string(meta.seed)},
       {"pt:seconds", std::to_string(meta.seconds)},
   };
   const std::string description = meta.stage + " " + meta.scene + ", " + std::to_string(meta.spp) + " spp, seed " +
                                   std::to_string(meta.seed) + ", " + meta.backend;
 
-  fs::path tmp = temporary_name(path_, extension_);
-  set_file_in_progress(tmp.c_str());  // a second Ctrl-C removes it
+  // The whole file in memory first; replace_file() then writes it, checking every write.
   std::string why;
+  std::vector<char> exr_bytes;
+  std::vector<unsigned char> bytes;
   bool ok;
   if (extension_ == "exr") {
     ExrImage image = exr_image(rgb, width, height, meta);
     image.text.insert(image.text.begin(), text.begin(), text.end());
     image.text.emplace_back("comments", description);  // EXR's own name for a description
-    ok = write_exr(tmp.string(), image, why);
+    ok = encode_exr(image, exr_bytes, why);
   } else {
     const ImageCodec* codec = openimageio(why);
-    if (!codec) {
-      set_file_in_progress("");
-      throw Error(kExitOutput, "cannot write '" + path_ + "': " + why);
-    }
+    if (!codec) throw Error(kExitOutput, "cannot write '" + path_ + "': " + why);
     text.emplace_back("ImageDescription", description);
-    std::vector<std::uint8_t> bytes;
+    std::vector<std::uint8_t> srgb;
     if (extension_ == "png") {
-      bytes.resize(rgb.size());
-      for (std::size_t i = 0; i < rgb.size(); i++) bytes[i] = encode_srgb8(rgb[i], exposure);
+      srgb.resize(rgb.size());
+      for (std::size_t i = 0; i < rgb.size(); i++) srgb[i] = encode_srgb8(rgb[i], exposure);
     }
-    const void* pixels = bytes.empty() ? static_cast<const void*>(rgb.data()) : bytes.data();
-    ok = codec->write_rgb(tmp.string(), extension_, width, height, pixels, text, why);
+    const void* pixels = srgb.empty() ? static_cast<const void*>(rgb.data()) : srgb.data();
+    ok = codec->encode_rgb(extension_, width, height, pixels, text, bytes, why);
   }
-  std::error_code ec;
-  if (!ok) {
-    fs::remove(tmp, ec);
-    fail(path_, why.substr(0, why.find('\n')));
-  }
-  // Flush to the disk before the rename, so the target is the old file or the whole new one.
-  int fd = ::open(tmp.c_str(), O_RDONLY);
-  if (fd >= 0) ::fsync(fd), ::close(fd);
-  fs::rename(tmp, path_, ec);
-  set_file_in_progress("");
-  if (ec) {
-    std::string why = ec.message();
-    fs::remove(tmp, ec);
-    fail(path_, "renaming the finished image failed (" + why + ")");
-  }
+  if (!ok) fail(path_, why.substr(0, why.find('\n')), "choose another " + option_ + " path or image type");
+  const ByteSpan span = exr_bytes.empty() ? ByteSpan{bytes.data(), bytes.size()} : ByteSpan{exr_bytes.data(), exr_bytes.size()};
+  replace_file(path_, {span}, "free some space or choose another " + option_ + " path");
 }
 
 }  // namespace pt

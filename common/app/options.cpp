@@ -76,6 +76,11 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
   app.add_option("--device", o.device, "Vulkan device: index or part of its name (env PT_VULKAN_DEVICE)");
   app.add_option("--camera", o.camera, "which of the glTF file's cameras: its index N or its (node's) name; default the first met");
+  app.add_option("--gltf-scene", o.gltf_scene,
+                 "which of the glTF file's scenes to draw: its index N or its name; default the file's `scene`")
+      ->type_name("N|NAME");
+  app.add_flag("--frame", o.frame,
+               "frame the scene's bounds from a raised three-quarter view even where the file has a camera");
   app.add_option("--out", o.out, "output image: .exr (linear float), .png (8-bit sRGB) or .hdr")->capture_default_str();
   app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
   app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
@@ -108,10 +113,12 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   app.add_flag("--all-features", o.render.all_features,
                "run the general kernel instead of the one specialised to the scene's features");
   app.add_option("--checkpoint", o.checkpoint,
-                 "save the running render to <out>.ckpt every SECONDS (and at Ctrl-C); removed when it ends")
+                 "save the running render to <out>.ckpt (with --resume PATH: to PATH) every SECONDS (and at Ctrl-C); "
+                 "removed when the render reaches --spp")
       ->check(CLI::Range(0.0, 1e9));
   app.add_option("--resume", o.resume_path,
-                 "continue the checkpoint PATH (default <out>.ckpt) to --spp; same options as the saved render")
+                 "continue the checkpoint PATH (default <out>.ckpt) to --spp, saving to it again with --checkpoint; same "
+                 "options as the saved render")
       ->expected(0, 1)
       ->type_name("[PATH]");
   std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
@@ -140,6 +147,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.render.sky = parse_rgb(sky, "--sky");
+  if (o.frame && !o.camera.empty())
+    throw Error(kExitBadOption, "--frame and --camera both choose the view: use one");
   o.width_given = app.count("--width") > 0;
   o.height_given = app.count("--height") > 0;
   if (!samples.empty()) {
@@ -157,6 +166,13 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
   o.render.accel = accel == "none" ? kAccelNone : kAccelBvh;
   o.render.sampler = sampler == "independent" ? kSamplerIndependent : kSamplerSobol;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");
+  // CLI::Range lets NaN through (every comparison with it is false), and NaN is no "off".
+  for (auto [name, value] : {std::pair{"--checkpoint", o.checkpoint}, {"--time-budget", o.render.time_budget},
+                             {"--target-error", o.render.target_error}}) {
+    if (std::isnan(value)) {
+      throw Error(kExitBadOption, std::string(name) + " is not a number (NaN); give a number, or leave the option out");
+    }
+  }
   return o;
 }
 

@@ -37,6 +37,8 @@ struct Options {
   std::string error_map;                  // --error-map PATH: each pixel's relative error (error_map.h)
   bool keep_halves = false;               // --keep-halves: the .exr keeps the halves' sums (film_file.h)
   std::string camera;                     // --camera N|NAME: which of the file's cameras ("" = the first met)
+  std::string gltf_scene;                 // --gltf-scene N|NAME: which of the file's scenes ("" = its default)
+  bool frame = false;                     // --frame: frame the scene's bounds even where the file has a camera
   bool width_given = false;               // --width / --height were on the command line (a camera's
   bool height_given = false;              // aspectRatio sets the height when only the width is)
 };

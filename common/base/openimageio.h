@@ -38,10 +38,13 @@ class ImageCodec {
   // (unassociated) alpha is kept as stored. nullptr: `why` says why.
   virtual std::unique_ptr<ImageReader> open_memory(const unsigned char* bytes, std::size_t size, bool png,
                                                    std::string& why) const = 0;
-  // Writes an RGB image to `path` in the format that `extension` names ("png": 8-bit
-  // values, "hdr": floats), with text attributes. false: `why` says why.
-  virtual bool write_rgb(const std::string& path, const std::string& extension, int width, int height,
-                         const void* pixels, const ImageAttributes& attributes, std::string& why) const = 0;
+  // Encodes an RGB image in memory, in the format that `extension` names ("png": 8-bit
+  // values, "hdr": floats), with text attributes: `bytes` is then the whole file, which
+  // common/app/replace_file.h writes (OpenImageIO's writers do not report a short write).
+  // false: `why` says why.
+  virtual bool encode_rgb(const std::string& extension, int width, int height, const void* pixels,
+                          const ImageAttributes& attributes, std::vector<unsigned char>& bytes,
+                          std::string& why) const = 0;
 };
 
 // The module's one entry point (extern "C", so dlsym finds it by this name).

@@ -54,17 +54,20 @@ class OiioCodec final : public ImageCodec {
     return std::make_unique<OiioReader>(std::move(memory), std::move(input), std::move(spec));
   }
 
-  bool write_rgb(const std::string& path, const std::string& extension, int width, int height, const void* pixels,
-                 const ImageAttributes& attributes, std::string& why) const override {
+  bool encode_rgb(const std::string& extension, int width, int height, const void* pixels,
+                  const ImageAttributes& attributes, std::vector<unsigned char>& bytes, std::string& why) const override {
     const OIIO::TypeDesc format = extension == "png" ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
     OIIO::ImageSpec spec(width, height, 3, format);
     for (const auto& [name, value] : attributes) spec.attribute(name, value);
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(extension);
-    if (!out) {
-      why = "no " + extension + " writer in OpenImageIO";
+    if (!out || !out->supports("ioproxy")) {
+      why = "no " + extension + " writer into memory in OpenImageIO";
       return false;
     }
-    if (out->open(path, spec) && out->write_image(format, pixels) && out->close()) return true;
+    bytes.clear();
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    out->set_ioproxy(&memory);
+    if (out->open("image." + extension, spec) && out->write_image(format, pixels) && out->close()) return true;
     why = out->geterror();
     if (why.empty()) why = "the image writer failed";
     return false;

@@ -1,11 +1,14 @@
 // glTF materials as the contract's (see gltf_materials.h): the factors and the extension
-// numbers read, checked against their glTF ranges, and made a pt::Material by
-// make_gltf_material (scene.cpp).
+// numbers read, checked against their glTF ranges (and emission against kMaxEmission), and
+// made a pt::Material by make_gltf_material (scene.cpp).
 #include "common/scene/gltf_materials.h"
+
+#include <cstdio>
 
 #include "common/base/error.h"
 #include "common/scene/gltf_validate.h"
 #include "common/scene/scene.h"
+#include "common/scene/scene_sanity.h"
 
 namespace pt::gltf {
 
@@ -21,6 +24,25 @@ double extension_number(const tinygltf::ExtensionMap& extensions, const std::str
   if (!value.IsNumber())
     fail(file, where + ".extensions." + name + "." + key + " is not a number: " + gltf::kReexport);
   return value.GetNumberAsDouble();
+}
+
+// Emission that float sums could overflow (kMaxEmission, scene_sanity.h, says why) is
+// refused: an image of +Inf pixels helps no one.
+void check_emission(double radiance, const std::string& where, const std::string& file) {
+  if (radiance <= kMaxEmission) return;
+  char line[160];
+  std::snprintf(line, sizeof line, " x emissiveStrength = %.3g is above %.0e, the largest emitted radiance ", radiance,
+                kMaxEmission);
+  fail(file, where + line +
+                 "the renderer sums without overflowing 32-bit floats: lower KHR_materials_emissive_strength "
+                 "(radiance is in the scene's own units; scale every light down together to keep the image's look)");
+}
+
+// A string from the file in a message: printable ASCII, at most 40 characters.
+std::string printable(const std::string& text) {
+  std::string out = text.substr(0, 40);
+  for (char& c : out) c = (c >= ' ' && c <= '~') ? c : '?';
+  return out + (text.size() > 40 ? "..." : "");
 }
 
 }  // namespace
@@ -41,8 +63,8 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
     std::string i = "[" + std::to_string(k) + "]";
     base[k] = checked_float(file, pbr.baseColorFactor[k], factors + "baseColorFactor" + i, 0.0, 1.0);
     checked_float(file, m.emissiveFactor[k], where + ".emissiveFactor" + i, 0.0, 1.0);
-    emission[k] =
-        checked_float(file, m.emissiveFactor[k] * strength, where + ".emissiveFactor" + i + " x strength");
+    check_emission(m.emissiveFactor[k] * strength, where + ".emissiveFactor" + i, file);
+    emission[k] = float(m.emissiveFactor[k] * strength);
   }
   float metallic = checked_float(file, pbr.metallicFactor, factors + "metallicFactor", 0.0, 1.0);
   float roughness = checked_float(file, pbr.roughnessFactor, factors + "roughnessFactor", 0.0, 1.0);
@@ -58,7 +80,7 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
   float eta = checked_float(file, ior, where + ".extensions.KHR_materials_ior.ior", 1.0);
   // MASK cuts holes (gltf_textures.cpp reads its cutoff; intersect.glsl cut_out).
   if (m.alphaMode != "OPAQUE" && m.alphaMode != "MASK")
-    warn_once(file + ": scene uses alphaMode " + m.alphaMode + "; surfaces are drawn opaque");
+    warn_once(file + ": scene uses alphaMode " + printable(m.alphaMode) + "; surfaces are drawn opaque");
   return make_gltf_material(base, metallic, roughness, t, eta, emission, m.doubleSided);
 }
 

@@ -1,15 +1,13 @@
 // The checks of a glTF 2.0 file before tinygltf reads it, for the loader of the contract
-// (README.md) "Scenes": the file itself (a Git LFS pointer is named as one), the GLB
-// container, the JSON's integers and nesting, extensionsRequired (before tinygltf reads
-// buffers an extension may have compressed), and the sizes tinygltf reads into an int; then
-// buffer and image URIs and the bufferViews of images (gltf_precheck_uris.cpp).
+// (README.md) "Scenes": the file itself (a regular file of at most 1 GiB, refused before it is
+// read; a Git LFS pointer is named as one), the GLB container, the JSON's nesting (in the text,
+// before any parser) and integers, extensionsRequired (before tinygltf reads buffers an
+// extension may have compressed), and the sizes tinygltf reads into an int; then buffer and
+// image URIs and the bufferViews of images (gltf_precheck_uris.cpp).
 #include <cctype>
-#include <cerrno>
 #include <climits>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <set>
 
@@ -30,6 +28,9 @@ using Json = nlohmann::json;
 namespace fs = std::filesystem;
 
 constexpr int kMaxJsonDepth = 64;  // real files nest about 8 levels
+// Where the bytes themselves are damaged, a fresh copy or export helps (unlike kReexport's
+// violations of the specification, which the same exporter would write again).
+const std::string kDamaged = "the file is truncated or damaged; copy or export it again";
 const std::set<std::string> kSizeKeys = {"byteOffset", "byteLength", "byteStride", "count"};
 
 // The extensions that change what buffers or images hold, and the way out of each.
@@ -70,40 +71,50 @@ void check_required_extensions(const Json& doc, const std::string& file) {
   }
 }
 
+// The scene file, refused before it is read when it is not a regular file (a FIFO would be
+// read without end, a device or a sparse file of gigabytes would be read whole) or is larger
+// than kMaxSceneFileBytes.
 std::vector<unsigned char> read_file(const std::string& path) {
-  std::error_code ec;
-  fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) {
-    throw Error(kExitBadScene,
-                "cannot open scene '" + path + "': no such file; check the path or use builtin:cornell");
+  return read_regular_file(path, [&](const std::string& why) {
+    std::string advice = "give a .gltf or .glb file";
+    if (why == "no such file") advice = "check the path or use builtin:cornell";
+    if (why.find("more than") != std::string::npos) advice = "simplify the scene (fewer or coarser meshes)";
+    if (why.find("permissions") != std::string::npos) advice.clear();
+    throw Error(kExitBadScene, "cannot read scene '" + path + "': " + why + (advice.empty() ? "" : "; " + advice));
+  });
+}
+
+// The deepest nesting of arrays and objects in JSON text, counted outside strings before any
+// parser sees the text: a value nested 100,000 deep is 200 KB, and code that walks a parsed
+// value by recursion (dump(), tinygltf's extras) overflows the stack on it.
+void check_nesting(const std::string& text, const std::string& file) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) {
+        fail(file, "its JSON nests arrays and objects deeper than " + str(kMaxJsonDepth) + " levels (at byte " +
+                       str(i) + "); glTF files nest about 8, so this is not a glTF file the loader can read: "
+                       "check what wrote it");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
   }
-  if (fs::is_directory(status)) {
-    throw Error(kExitBadScene, "cannot open scene '" + path + "': it is a folder; give a .gltf or .glb file");
-  }
-  if (fs::file_size(path, ec) > UINT_MAX && !ec) {
-    throw Error(kExitBadScene,
-                "cannot read scene '" + path + "': larger than 4 GiB, which tinygltf cannot read");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw Error(kExitBadScene,
-                "cannot open scene '" + path + "': " + std::strerror(errno) + "; check its permissions");
-  }
-  // One read of the whole file (a byte at a time through a stream iterator took a second
-  // for a 180 MB mesh).
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) {  // not seekable (a pipe): as a stream
-    in.clear();
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
-  }
-  in.seekg(0, std::ios::beg);
-  std::vector<unsigned char> bytes(size > 0 ? std::size_t(size) : 0);
-  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) {
-    throw Error(kExitBadScene,
-                "cannot read scene '" + path + "': " + std::strerror(errno) + "; check the file");
-  }
-  return bytes;
+}
+
+// A JSON value in a message: a number as itself, anything else by its JSON type alone (an
+// array or string may be megabytes long or nested beyond any stack).
+std::string describe(const Json& j) {
+  if (j.is_number()) return j.dump();
+  const std::string type = j.type_name();
+  return (type == "array" || type == "object" ? "an " : "a ") + type;
 }
 
 // The JSON chunk of a .glb, after checking the container (12-byte header, then chunks of
@@ -117,18 +128,18 @@ std::string glb_json(std::vector<unsigned char>& bytes, const std::string& file)
   if (version != 2) fail(file, bad + "version " + str(version) + "; only glTF 2.0 is supported");
   if (length > bytes.size() || length < 20) {
     fail(file,
-         bad + "header says " + str(length) + " bytes, file has " + str(bytes.size()) + ": " + kReexport);
+         bad + "header says " + str(length) + " bytes, file has " + str(bytes.size()) + ": " + kDamaged);
   }
   bytes.resize(length);
   std::uint64_t json_length = read_u32_le(&bytes[12]);
   std::uint64_t json_end = 20 + json_length;
   if (read_u32_le(&bytes[16]) != 0x4E4F534Au || json_length == 0 || json_end > length) {
-    fail(file, bad + "the JSON chunk is missing or runs past the end: " + kReexport);
+    fail(file, bad + "the JSON chunk is missing or runs past the end: " + kDamaged);
   }
   if (json_length % 4 != 0) fail(file, bad + "the JSON chunk is not padded to 4 bytes: " + kReexport);
   if (json_end < length) {  // a BIN chunk follows
     if (json_end + 8 > length || json_end + 8 + read_u32_le(&bytes[json_end]) > length) {
-      fail(file, bad + "the BIN chunk runs past the end of the file: " + kReexport);
+      fail(file, bad + "the BIN chunk runs past the end of the file: " + kDamaged);
     }
   }
   return std::string(bytes.begin() + 20, bytes.begin() + std::ptrdiff_t(json_end));
@@ -138,7 +149,7 @@ std::string glb_json(std::vector<unsigned char>& bytes, const std::string& file)
 // other integer must fit an int. Also bounds the nesting (tinygltf recurses into it).
 void check_numbers(const Json& j, const std::string& where, int depth, bool in_extras,
                    const std::string& file) {
-  if (depth > kMaxJsonDepth) fail(file, where + " is nested too deeply: " + kReexport);
+  if (depth > kMaxJsonDepth) fail(file, where + " is nested too deeply: " + kReexport);  // check_nesting did
   if (j.is_object() || j.is_array()) {
     std::size_t i = 0;
     for (auto it = j.begin(); it != j.end(); ++it, ++i) {
@@ -148,8 +159,7 @@ void check_numbers(const Json& j, const std::string& where, int depth, bool in_e
       bool extras = in_extras || (object && it.key() == "extras");
       if (object && !extras && kSizeKeys.count(it.key())) {
         if (!it->is_number_unsigned()) {
-          fail(file,
-               w + " must be a non-negative integer, is " + it->dump().substr(0, 40) + ": " + kReexport);
+          fail(file, w + " must be a non-negative integer, is " + describe(*it) + ": " + kReexport);
         }
         continue;
       }
@@ -158,14 +168,18 @@ void check_numbers(const Json& j, const std::string& where, int depth, bool in_e
   } else if (j.is_number_integer() && !in_extras) {
     bool fits = j.is_number_unsigned() ? j.get<std::uint64_t>() <= std::uint64_t(INT_MAX)
                                        : j.get<std::int64_t>() >= INT_MIN && j.get<std::int64_t>() <= INT_MAX;
-    if (!fits) fail(file, where + " = " + j.dump() + " is out of range: " + kReexport);
+    if (!fits) {
+      fail(file, where + " = " + j.dump() + " is out of range: this renderer (tinygltf) reads integers from " +
+                     std::to_string(INT_MIN) + " to " + std::to_string(INT_MAX) + " there");
+    }
   }
 }
 
 void check_int_size(const Json& object, const char* key, const std::string& where, const std::string& file) {
   auto value = object.find(key);
   if (value != object.end() && value->is_number_unsigned() && value->get<std::uint64_t>() > INT_MAX) {
-    fail(file, where + "." + key + " = " + value->dump() + " is out of range: " + kReexport);
+    fail(file, where + "." + key + " = " + value->dump() + " is out of range: this renderer (tinygltf) reads it "
+               "as an int, up to " + std::to_string(INT_MAX));
   }
 }
 
@@ -205,6 +219,7 @@ SourceFile read_and_precheck(const std::string& path) {
   source.base_dir = fs::path(path).parent_path().string();
   std::string text =
       source.binary ? glb_json(source.bytes, path) : std::string(source.bytes.begin(), source.bytes.end());
+  check_nesting(text, path);
   Json doc;
   try {
     doc = Json::parse(text);

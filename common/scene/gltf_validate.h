@@ -15,8 +15,12 @@
 
 namespace pt::gltf {
 
-// The usual advice at the end of a message about a malformed file.
-inline constexpr const char* kReexport = "the file is truncated or malformed; re-export it";
+// The usual advice at the end of a message about a malformed file: a violation of the
+// specification, which exporting again with the same tool would repeat (damaged bytes, where a
+// fresh copy helps, are said as such where they are found: gltf_precheck.cpp, gltf_images.cpp).
+inline constexpr const char* kReexport =
+    "this breaks the glTF 2.0 specification (the Khronos glTF-Validator reports it too): fix the file, or report "
+    "it to the tool that wrote it";
 
 // Throws pt::Error(kExitBadScene, "<file>: <message>"), the message made one line.
 [[noreturn]] void fail(const std::string& file, const std::string& message);
@@ -60,5 +64,11 @@ std::vector<glm::vec2> read_texcoords(const tinygltf::Model& model, int accessor
 // A COLOR_n accessor: VEC3 or VEC4 of the same component types; VEC3 gets alpha 1.
 std::vector<glm::vec4> read_colors(const tinygltf::Model& model, int accessor, std::size_t vertex_count,
                                    const std::string& file, const std::string& what);
+
+// An EXT_mesh_gpu_instancing attribute: TRANSLATION and SCALE (components 3) VEC3 of FLOAT,
+// ROTATION (components 4) VEC4 of FLOAT or of normalized BYTE / SHORT; `instances` entries, each
+// finite; `components` floats an instance.
+std::vector<float> read_instance_attribute(const tinygltf::Model& model, int accessor, int components,
+                                           std::size_t instances, const std::string& file, const std::string& what);
 
 }  // namespace pt::gltf

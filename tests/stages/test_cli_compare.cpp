@@ -86,7 +86,7 @@ std::string synthetic(const std::string& name, int width, int height, int spp, b
     film.add_pass(pass, 1);
   }
   pt::ImageMetadata meta;
-  meta.stage = "synthetic", meta.backend = "none", meta.scene = "none", meta.spp = std::uint64_t(spp);
+  meta.stage = "synthetic", meta.backend = "none", meta.scene = "none", meta.spp = std::uint64_t(spp), meta.seed = 5;
   meta.film = with_film ? &film : nullptr;
   meta.identity = {"synthetic", "0123456789abcdef", std::to_string(width) + "x" + std::to_string(height), 5};
   meta.ranges = {{0, std::uint64_t(spp)}};
@@ -231,6 +231,10 @@ TEST_CASE("pt_compare: its output, --zmap, and one line and exit 2 or 3 for what
   CHECK(r.code == 0);
   CHECK(r.out.find("(alpha 0.05, Bonferroni over 10 tests: 9 regions of 4x4 pixels") != std::string::npos);
   CHECK(fs::exists(path("z.exr")));
+  // A --zmap that is one of the inputs would replace it: refused before anything is read.
+  const std::string kept = pt_test::read_file(a);
+  check_error(compare("--zmap " + a + " " + a + " " + b), "pt_compare", 2, "is the same file as");
+  CHECK(pt_test::read_file(a) == kept);
 
   check_error(compare(a + " " + synthetic("rgb.exr", 12, 10, 8, false)), "pt_compare", 3,
               "rgb.exr' has no per-pixel variance");

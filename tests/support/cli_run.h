@@ -45,6 +45,16 @@ inline Run run_program(const std::string& program, const std::string& args, cons
   return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stderr"), read_file(dir / "stdout")};
 }
 
+// A PID that no process has now: a child that has exited and been reaped (for the
+// temporary files of killed runs).
+inline long dead_pid() {
+  pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return long(child);
+}
+
 // How many times `word` occurs in `text` (overlapping occurrences counted).
 inline int occurrences(const std::string& text, const std::string& word) {
   int n = 0;

@@ -186,15 +186,23 @@ TEST_CASE("checkpoint: one of another render, a damaged or a truncated file is r
 
 TEST_CASE("checkpoint: a resumed render counts the checkpoint's film too when it checks the memory",
           "[reliability][bounds]") {
-  // One film: 76 bytes per pixel (film 32, its halves' sums 16, pass 16, output 12);
-  // resuming: 108. An image of available / 92 pixels fits the first and not the second,
-  // with 17% to spare either way.
-  const std::uint64_t pixels = pt::available_memory_bytes() / 92;
+  // The need per pixel of a render (common/render/memory.h) without and with the
+  // checkpoint's film; an image of available / (their mean) pixels fits the first and not
+  // the second.
+  pt::FramePlan plan;
+  plan.width = plan.height = 10000, plan.out = "a.png";
+  const double one = double(pt::memory_need(plan).bytes) / 1e8;
+  plan.resuming = true;
+  const double resuming = double(pt::memory_need(plan).bytes) / 1e8;
+  REQUIRE(resuming > one * 1.2);
+  const std::uint64_t pixels = std::uint64_t(double(pt::available_memory_bytes()) / (0.5 * (one + resuming)));
   if (pixels > (std::uint64_t(1) << 31)) {
     WARN("more memory than one image may use: nothing to check here");
     return;
   }
-  const int side = int(std::sqrt(double(pixels)));
-  CHECK_NOTHROW(pt::check_image_memory(side, side, false));
-  CHECK_THROWS_AS(pt::check_image_memory(side, side, true), pt::Error);
+  plan.width = plan.height = int(std::sqrt(double(pixels)));
+  plan.resuming = false;
+  CHECK_NOTHROW(pt::check_memory(plan));
+  plan.resuming = true;
+  CHECK_THROWS_AS(pt::check_memory(plan), pt::Error);
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/app/exr_file.h"
 #include "common/app/film_file.h"
 #include "common/app/image_output.h"
 #include "common/base/error.h"
@@ -156,6 +157,7 @@ TEST_CASE("film parts: a merge is a part: merged again it gives the same image",
   FilmPart ab = merge_film_parts({read_film_part(a), read_film_part(b)}, notes);
   ImageMetadata meta;
   meta.stage = ab.id.stage, meta.backend = ab.backend, meta.film = &ab.film, meta.identity = ab.id, meta.ranges = ab.ranges;
+  meta.seed = ab.id.seed;  // as pt_merge writes it
   const std::string ab_path = scratch("mm_ab.exr").string();
   OutputFile(ab_path).write(ab.film.mean_rgb(), 8, 8, meta);
   const FilmPart again = merge_film_parts({read_film_part(c), read_film_part(ab_path)}, notes);
@@ -208,7 +210,7 @@ TEST_CASE("film parts: a merge of parts that follow one another knows the halves
   CHECK_FALSE(merge_film_parts({read_film_part(a), read_film_part(b)}, notes).kept_halves);
   ImageMetadata meta;
   meta.stage = all.id.stage, meta.backend = all.backend, meta.film = &all.film, meta.identity = all.id;
-  meta.ranges = all.ranges, meta.keep_halves = true;
+  meta.ranges = all.ranges, meta.keep_halves = true, meta.seed = all.id.seed;
   const std::string all_path = scratch("h_all.exr").string();
   OutputFile(all_path).write(all.film.mean_rgb(), 8, 8, meta);
   CHECK(read_film_part(all_path).film.per_pixel_relative_error() ==
@@ -287,4 +289,75 @@ TEST_CASE("pass schedule: passes end at 1, 2, 4, 8, 16 and every multiple of 16"
   }
   for (std::uint64_t s : {3u, 5u, 15u, 17u, 33u, 47u}) CHECK_FALSE(is_pass_end(s));
   CHECK(pass_end(4294967280ull) == 4294967296ull);
+}
+
+// What a part's header says is read strictly (issue 45): a number is digits only, without
+// sign, spaces, leading zeros or anything after it, and within its range; a sample range
+// ends at sample index 2^32 at most and the ranges of one part ascend without overlap, so
+// that no sum of counts overflows. Anything else names the file and the attribute, exit 3.
+TEST_CASE("film parts: header numbers are read strictly: no sign, no junk, no overflow, within range",
+          "[film][parts][reliability]") {
+  for (const char* bad : {"1:18446744073709551615", "18446744073709551615:2", "18446744073709551616:1", "+0:4", "0:+4",
+                          "-1:4", "0:-4", " 0:4", "0:4 ", "0:4,", ",0:4", "0:4,,8:4", "00:4", "0:04", "0x0:4", "0:4e0",
+                          "0:0", "4294967295:2", "0:4294967297", "4294967296:1", "8:4,0:4", "0:8,4:8", "0:4:4", "0;4",
+                          "", "0", ":"}) {
+    INFO("pt:samples '" << bad << "'");
+    try {
+      parse_ranges(bad, "part.exr");
+      FAIL("accepted");
+    } catch (const Error& e) {
+      CHECK(e.code() == kExitBadScene);
+      CHECK_THAT(std::string(e.what()), Catch::Contains("'part.exr'") && Catch::Contains("pt:samples"));
+    }
+  }
+  CHECK(format_ranges(parse_ranges("0:4", "p")) == "0:4");
+  CHECK(format_ranges(parse_ranges("0:16,32:16,48:1", "p")) == "0:16,32:16,48:1");
+  CHECK(format_ranges(parse_ranges("4294967295:1", "p")) == "4294967295:1");
+  CHECK(format_ranges(parse_ranges("0:4294967296", "p")) == "0:4294967296");
+
+  // The seed and the scene hash, in a part read back and edited in memory.
+  const Scene scene = make_builtin_scene("furnace");
+  RenderSettings s = settings(4, 4, 4, 21);
+  const std::string file = render_part(stage3::kernels(), scene, s, 0, 4, "strict.exr");
+  ExrImage image;
+  std::string why;
+  REQUIRE(read_exr(file, image, why));
+  auto refused = [&](const char* name, const std::string& value) {
+    ExrImage edited = image;
+    for (auto& [key, text] : edited.text)
+      if (key == name) text = value;
+    try {
+      film_part_of(edited, "edited.exr");
+    } catch (const Error& e) {
+      CHECK(e.code() == kExitBadScene);
+      CHECK_THAT(std::string(e.what()), Catch::Contains("'edited.exr'") && Catch::Contains(name));
+      return true;
+    }
+    return false;
+  };
+  for (const char* bad : {"21abc", "-21", "+21", "021", " 21", "21 ", "0x15", "4294967296", "99999999999999999999999"}) {
+    INFO("pt:seed '" << bad << "'");
+    CHECK(refused("pt:seed", bad));
+  }
+  for (const char* bad : {"0123", "0123456789abcdeg", "0123456789ABCDEF", "0123456789abcdef0", " 123456789abcdef"}) {
+    INFO("pt:scene_hash '" << bad << "'");
+    CHECK(refused("pt:scene_hash", bad));
+  }
+  CHECK_FALSE(refused("pt:seed", "21"));
+}
+
+TEST_CASE("film parts: ranges whose ends or sums would overflow are refused by the merge", "[film][parts][reliability]") {
+  FilmPart a, b;
+  a.path = "a.exr", b.path = "b.exr";
+  a.id = b.id = {"stage1_raycast", "0123456789abcdef", "1x1", 1};
+  a.film = Film(1, 1), b.film = Film(1, 1);
+  a.film.restore(1, {1.0, 1.0, 1.0, 1.0});
+  a.ranges = {{0, 1}};
+  for (const SampleRange r : {SampleRange{1, ~std::uint64_t(0)}, SampleRange{~std::uint64_t(0), 2},
+                              SampleRange{4294967295ull, 2}, SampleRange{5, 0}}) {
+    INFO("range " << r.first << ":" << r.count);
+    b.ranges = {r};
+    b.film.restore(r.count, {1.0, 1.0, 1.0, 1.0});
+    CHECK_THAT(merge_error({a, b}), Catch::Contains("b.exr"));
+  }
 }

@@ -89,8 +89,10 @@ def textures():
                 "oid sha256:4d7a214614ab2935c943f9e0ff69d22eadbb8f32b1258daaa5e2ca24d17e2393\nsize 12345\n")
     for name, uri in (("tex_external.gltf", "tex_external.png"), ("tex_missing.gltf", "tex_missing.png"),
                       ("tex_lfs.gltf", "tex_lfs.png"),
-                      ("tex_outside.gltf", "../gltf/tex_external.png"),
-                      ("tex_outside_encoded.gltf", "%2E%2E/gltf/tex_external.png")):
+                      # files outside the scene's folder (tests/CMakeLists.txt); "../gltf/x.png"
+                      # would resolve back inside it, and is read
+                      ("tex_outside.gltf", "../../CMakeLists.txt"),
+                      ("tex_outside_encoded.gltf", "%2E%2E/%2E%2E/CMakeLists.txt")):
         g = Gltf()
         g.doc["images"] = [{"uri": uri}]
         g.doc["textures"] = [{"source": 0}]
