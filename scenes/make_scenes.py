@@ -261,8 +261,9 @@ def glossy_glass():
     down = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)]  # faces -y
     g.node(name="area_light", mesh=g.mesh("area_light", down, [(0, 1, 2), (0, 2, 3)], lamp), translation=[0, 4, 0],
            scale=[1.5, 1, 1.5])
+    # KHR_lights_punctual's intensity is in candela: 20 W/sr at 683 lm/W.
     g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
-        {"name": "warm_point", "type": "point", "color": [1.0, 0.9, 0.8], "intensity": 20.0}]}}
+        {"name": "warm_point", "type": "point", "color": [1.0, 0.9, 0.8], "intensity": 20.0 * 683}]}}
     g.node(name="point_light", translation=[2, 3, 3], extensions={"KHR_lights_punctual": {"light": 0}})
     g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1, "zfar": 100}}]
     g.node(name="camera", camera=0, translation=[0, 2.2, 7], rotation=about_x(-math.atan2(1.4, 7)))

@@ -9,9 +9,13 @@
 
 // A spot light's share of its intensity in the direction at cosine cos_d from its axis:
 // full within the inner cone, none beyond the outer, and between them the square of the
-// linear ramp in the cosine (KHR_lights_punctual's recommended falloff).
+// linear ramp in the cosine (KHR_lights_punctual's recommended falloff). A cone without a
+// ramp (inner == outer: Blender's Spot Blend 0) has a hard edge, a step at the outer
+// angle; its ramp's width is 0, which must not divide (0 / 0 on the edge).
 float spot_falloff(PointLight l, float cos_d) {
-  float t = clamp((cos_d - l.cos_outer) / max(1e-3f, l.cos_inner - l.cos_outer), 0.0f, 1.0f);
+  float ramp = l.cos_inner - l.cos_outer;
+  if (!(ramp > 0.0f)) return cos_d >= l.cos_outer ? 1.0f : 0.0f;
+  float t = clamp((cos_d - l.cos_outer) / ramp, 0.0f, 1.0f);
   return t * t;
 }
 

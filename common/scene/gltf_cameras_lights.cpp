@@ -5,6 +5,7 @@
 // raycasting, Eq. (2)); the punctual lights, deltas the article does not have, only
 // stage4 and stage5 see (docs/stage4_direct_indirect.md).
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -44,6 +45,24 @@ void SceneBuilder::add_camera(int index, const glm::dmat4& world, const tinygltf
   scene_.cameras.push_back(SceneCamera{desc, index, c.name, node.name.empty() ? where : node.name});
 }
 
+namespace {
+
+// KHR_lights_punctual gives intensities in photometric units: candela (lm/sr) for point and
+// spot lights, lux (lm/m^2) for directional ones. The renderer's radiance is radiometric
+// (the scene's own units, W), so they are divided by 683 lm/W, the luminous efficacy of
+// 555 nm light, as Blender's glTF importer does in its default "Standard" lighting mode:
+// I / 683 W/sr and E / 683 W/m^2. Built-in scenes give theirs in W directly.
+constexpr double kLumensPerWatt = 683.0;
+
+// The file's lights of the types modelled (for the note on stderr).
+std::size_t modelled_lights(const tinygltf::Model& model) {
+  std::size_t n = 0;
+  for (const tinygltf::Light& l : model.lights) n += l.type == "point" || l.type == "spot" || l.type == "directional";
+  return n;
+}
+
+}  // namespace
+
 void SceneBuilder::add_light(int index, const glm::dmat4& world) {
   const tinygltf::Light& light = model_.lights[index];
   std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
@@ -55,8 +74,11 @@ void SceneBuilder::add_light(int index, const glm::dmat4& world) {
     const double half_pi = 1.5707963267948966;
     float inner = checked_float(file_, light.spot.innerConeAngle, where + ".spot.innerConeAngle", 0.0, half_pi);
     float outer = checked_float(file_, light.spot.outerConeAngle, where + ".spot.outerConeAngle", 0.0, half_pi);
-    if (!(inner < outer))
-      fail(file_, where + ".spot.innerConeAngle must be less than its outerConeAngle: " + gltf::kReexport);
+    // Blender writes inner == outer for a spot of Spot Blend 0: a hard-edged cone, full up
+    // to the outer angle and dark beyond. An inner cone at or past the outer one means the
+    // same; it is made equal to it, which spot_falloff (punctual_light.glsl) takes as a step
+    // and the light table's power (scene_lights.cpp) as the cone's 2 pi (1 - cos outer).
+    if (!(inner < outer)) inner = outer;
     out.cos_inner = std::cos(inner), out.cos_outer = std::cos(outer);
   } else if (light.type == "directional") {
     out.kind = kPunctualDirectional;
@@ -72,7 +94,8 @@ void SceneBuilder::add_light(int index, const glm::dmat4& world) {
   for (std::size_t k = 0; k < light.color.size(); ++k) {
     color[int(k)] = checked_float(file_, light.color[k], where + ".color[" + std::to_string(k) + "]", 0.0);
   }
-  out.intensity = intensity * color;
+  // Candela to W/sr, lux to W/m^2; then the colour (linear), as the extension multiplies.
+  out.intensity = float(double(intensity) / kLumensPerWatt) * color;
   if (!std::isfinite(out.intensity.x + out.intensity.y + out.intensity.z))
     fail(file_, where + ": intensity x color overflows: " + gltf::kReexport);
   if (light.range > 0.0 && out.kind != kPunctualDirectional)
@@ -86,6 +109,13 @@ void SceneBuilder::add_light(int index, const glm::dmat4& world) {
       return;
     }
     out.direction = glm::vec3(axis / length);
+  }
+  // Said once per file read, where its first light is placed: the units a user must know
+  // to compare the image with another renderer's.
+  if (scene_.point_lights.empty()) {
+    std::size_t n = modelled_lights(model_);
+    std::fprintf(stderr, "%s: %zu KHR_lights_punctual light%s: photometric units (cd, lux) converted at %g lm/W\n",
+                 file_.c_str(), n, n == 1 ? "" : "s", kLumensPerWatt);
   }
   scene_.point_lights.push_back(out);
 }

@@ -4,6 +4,7 @@
 // becomes the scene (the contract (README.md) "Scenes").
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -16,7 +17,51 @@
 
 namespace pt::gltf {
 
-// Walks the default scene and fills a pt::Scene.
+// What the chosen scene draws, counted before any triangle is made (gltf_primitives.cpp): each
+// primitive of mode 4, 5 or 6 with POSITION gives its triangles (mode_triangles of its indices'
+// count, else POSITION's), once for every node that places its mesh and, on a node with
+// EXT_mesh_gpu_instancing, once for every instance. check_model has made the nodes a tree (each
+// visited once) and every index valid. attributes: some primitive will need TriangleAttributes
+// (a texture, an alpha mask or COLOR_0), which SceneBuilder::take then keeps for every triangle.
+// skipped: the primitives of modes 0-3 (points, lines, line loops, line strips), each counted once.
+struct DrawCount {
+  std::uint64_t triangles = 0;
+  bool overflowed = false;
+  bool attributes = false;
+  std::uint64_t skipped[4] = {0, 0, 0, 0};
+};
+DrawCount count_draws(const tinygltf::Model& model, const std::vector<int>& roots);
+
+// "3 primitives of mode LINES skipped (points and lines are not drawn)", or "" when none was.
+std::string skipped_text(const DrawCount& count);
+
+// "POINTS", "LINES", ..., "TRIANGLE_FAN" for glTF's modes 0-6.
+const char* mode_name(int mode);
+
+// The triangles `entries` indices (or vertices) of a primitive of `mode` make: n / 3 for lists,
+// n - 2 for strips and fans (from 3 entries), 0 for points and lines.
+std::uint64_t mode_triangles(int mode, std::uint64_t entries);
+
+// A primitive's indices as a triangle list, three a triangle, in the glTF specification's order:
+// strips alternate so that every triangle keeps the first one's winding (its front face), fans
+// share the first vertex. Triangles of a strip or fan that name a vertex twice (joins) are left out.
+std::vector<std::uint32_t> triangulate(int mode, const std::vector<std::uint32_t>& entries);
+
+// How many times a node places its mesh: its EXT_mesh_gpu_instancing accessors' count (checked
+// equal by check_model), else 1.
+std::uint64_t instance_count(const tinygltf::Model& model, const tinygltf::Node& node);
+
+// Each instance's transform in the node's space (translation * rotation * scale, each optional),
+// so that an instance's world transform is node_world * instance; one identity without the extension.
+std::vector<glm::dmat4> instance_transforms(const tinygltf::Model& model, int node_index, const std::string& file);
+
+// The roots of the scene drawn: --gltf-scene's choice (`request`: its index or name; none there
+// throws pt::Error(kExitBadOption) naming the scenes there are), else the file's `scene`, else
+// scene 0, saying on stderr which when the file has several; every root node when it has none.
+std::vector<int> choose_scene(const tinygltf::Model& model, const std::vector<int>& parents, const std::string& request,
+                              const std::string& file);
+
+// Walks the chosen scene and fills a pt::Scene.
 class SceneBuilder {
  public:
   SceneBuilder(const tinygltf::Model& model, const std::string& file)
@@ -39,13 +84,19 @@ class SceneBuilder {
   void add_camera(int index, const glm::dmat4& world, const tinygltf::Node& node, const std::string& where);
 
   // A KHR_lights_punctual light on a node: a point light at the node's origin, a spot or
-  // directional light shining along the node's -Z. Units are taken as radiometric: the
-  // intensity as W/sr (point, spot) or W/m^2 (directional), as the renderer's other lights.
+  // directional light shining along the node's -Z. The extension's photometric units are
+  // converted at 683 lm/W: candela to W/sr (point, spot), lux to W/m^2 (directional).
   void add_light(int index, const glm::dmat4& world);
 
-  void add_mesh(int mesh_index, const glm::dmat4& world);
+  // A mesh placed once for each of `worlds` (a node's EXT_mesh_gpu_instancing instances);
+  // triangle lists, strips and fans (gltf_primitives.cpp: triangulate), points and lines skipped.
+  void add_mesh(int mesh_index, const std::vector<glm::dmat4>& worlds);
   void add_primitive(const tinygltf::Primitive& prim, int position_accessor, const std::string& where,
-                     const glm::dmat4& world);
+                     const std::vector<glm::dmat4>& worlds);
+  // A primitive's triangles (indices three a triangle) placed by `world`; those without area skipped.
+  void add_triangles(const std::vector<std::uint32_t>& indices, const std::vector<glm::vec3>& positions,
+                     const glm::dmat4& world, uint material, const std::vector<glm::vec2>& uv,
+                     const std::vector<glm::vec4>& colors);
 
   // Each glTF material used is added once; -1 is glTF's default material.
   uint material_index(int gltf_index);

@@ -95,7 +95,7 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
                             float ior, glm::vec3 emission, bool double_sided);
 
 // KHR_lights_punctual lights (common/kernel/scene_types.h PointLight): intensity in W/sr,
-// a spot's cone angles in radians (0 <= inner < outer <= pi/2), a directional light's
+// a spot's cone angles in radians (0 <= inner <= outer <= pi/2; inner == outer: a hard-edged cone), a directional light's
 // irradiance in W/m^2; `direction` is where the light travels, made unit here.
 PointLight make_point_light(glm::vec3 position, glm::vec3 intensity);
 PointLight make_spot_light(glm::vec3 position, glm::vec3 direction, glm::vec3 intensity, float inner, float outer);

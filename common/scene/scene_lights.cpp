@@ -45,11 +45,11 @@ glm::vec3 mean_emission(const Scene& scene, uint material, std::vector<std::opti
 // A punctual light's power, by which the light table picks it (any positive number would
 // be unbiased; the closer to the light's share of the light, the less noise). A point
 // light sends I into 4 pi sr; a spot light into its cone, up to halfway along the falloff
-// (the cone of angle between the inner and outer, 2 pi (1 - cos)); a directional light
-// lights the scene's cross-section, pi r^2 for the radius r of its bounding sphere.
+// (2 pi (1 - cos) of the angle between inner and outer; a hard edge, inner >= outer: the
+// outer); a directional light the scene's cross-section, pi r^2 (r: its bounding sphere's).
 double punctual_power(const Scene& scene, const PointLight& l) {
-  double i = luminance(l.intensity);
-  if (l.kind == kPunctualSpot) return 2.0 * M_PI * (1.0 - 0.5 * (double(l.cos_inner) + double(l.cos_outer))) * i;
+  double i = luminance(l.intensity), cos_inner = std::max(double(l.cos_inner), double(l.cos_outer));
+  if (l.kind == kPunctualSpot) return 2.0 * M_PI * (1.0 - 0.5 * (cos_inner + double(l.cos_outer))) * i;
   if (l.kind == kPunctualDirectional) {
     Bounds b = scene.bounds();
     double r = b.empty() ? 1.0 : 0.5 * double(glm::length(b.hi - b.lo));

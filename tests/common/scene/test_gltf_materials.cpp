@@ -70,24 +70,24 @@ TEST_CASE("metallic-roughness factors become the contract's materials", "[loader
 
 // --- Lights ---------------------------------------------------------------------------
 
-TEST_CASE("KHR_lights_punctual lights sit at their node with intensity times colour, in the order met",
+TEST_CASE("KHR_lights_punctual lights sit at their node with intensity / 683 lm/W times colour, in the order met",
           "[loader]") {
   pt::Scene scene = load("point_light.gltf");
   REQUIRE(scene.point_lights.size() == 4);
   const pt::PointLight& point = scene.point_lights[0];
   CHECK(point.kind == pt::kPunctualPoint);
   check_point(point.position, {1, 2, 0});
-  check_point(point.intensity, {5, 10, 2.5f});
+  check_point(point.intensity, glm::vec3(5, 10, 2.5f) / 683.0f);  // candela to W/sr
   const pt::PointLight& spot = scene.point_lights[1];  // "spot": {} takes the defaults
   CHECK(spot.kind == pt::kPunctualSpot);
   check_point(spot.direction, {0, 0, -1});
   CHECK(spot.cos_inner == Approx(1.0f));
   CHECK(spot.cos_outer == Approx(std::cos(0.7853981634)));
-  check_point(spot.intensity, {7, 7, 7});
+  check_point(spot.intensity, glm::vec3(7.0f / 683.0f));
   const pt::PointLight& sun = scene.point_lights[2];
   CHECK(sun.kind == pt::kPunctualDirectional);
   check_point(sun.direction, {0, 0, -1});
-  check_point(sun.intensity, {2, 2, 2});
+  check_point(sun.intensity, glm::vec3(2.0f / 683.0f));  // lux to W/m^2
   check_point(scene.point_lights[3].position, {0, 0, -4});
-  check_point(scene.point_lights[3].intensity, {3, 3, 3});  // colour defaults to white
+  check_point(scene.point_lights[3].intensity, glm::vec3(3.0f / 683.0f));  // colour defaults to white
 }
