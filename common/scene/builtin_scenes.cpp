@@ -224,10 +224,14 @@ Scene make_builtin_scene(const std::string& name) {
   throw Error(kExitBadScene, "unknown built-in scene 'builtin:" + name + "'; the built-in scenes are " + names);
 }
 
-Scene load_scene(const std::string& spec) {
+Scene load_scene(const std::string& spec, const std::string& gltf_scene) {
   const std::string prefix = "builtin:";
+  if (spec.rfind(prefix, 0) == 0 && !gltf_scene.empty()) {
+    throw Error(kExitBadOption, "--gltf-scene " + gltf_scene + " picks one of a glTF file's scenes; " + spec +
+                                    " is built in: leave --gltf-scene out");
+  }
   if (spec.rfind(prefix, 0) == 0) return make_builtin_scene(spec.substr(prefix.size()));
-  Scene s = load_gltf(spec);
+  Scene s = load_gltf(spec, gltf_scene);
   s.name = spec;
   build_light_table(s);
   return s;

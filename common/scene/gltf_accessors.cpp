@@ -3,6 +3,7 @@
 // accessor checked against its bufferView and the bufferView against its buffer, with every
 // size added and multiplied under overflow checks, then glTF 2.0's sparse substitutions
 // applied; the readers decode the elements it yields.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -180,25 +181,34 @@ Elements read_elements(const tinygltf::Model& model, int index, std::size_t elem
 // The components of a TEXCOORD_n or COLOR_n accessor as floats, `components` per vertex
 // (0: its type is not one of `shapes`). The glTF 2.0 table of mesh attributes allows
 // FLOAT, and UNSIGNED_BYTE or UNSIGNED_SHORT with normalized set (c / 255, c / 65535).
+// EXT_mesh_gpu_instancing's attributes (instances: true) allow FLOAT, and its ROTATION BYTE or
+// SHORT with normalized set (max(c / 127, -1), max(c / 32767, -1)), one per instance.
 std::vector<float> read_attribute_floats(const tinygltf::Model& model, int accessor, int components,
                                          std::size_t vertex_count, const std::string& file,
-                                         const std::string& what, const std::string& shapes) {
+                                         const std::string& what, const std::string& shapes, bool instances = false) {
   const tinygltf::Accessor& a = accessor_at(model, accessor, file, what);
   bool is_float = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  std::size_t size = is_float                                                    ? 4
+  bool is_signed = instances && components == 4 &&
+                   (a.componentType == TINYGLTF_COMPONENT_TYPE_BYTE || a.componentType == TINYGLTF_COMPONENT_TYPE_SHORT);
+  std::size_t size = is_float    ? 4
+                     : is_signed ? (a.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ? 1 : 2)
+                     : instances ? 0
                      : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
                      : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
                                                                                  : 0;
   if (components == 0 || size == 0 || (!is_float && !a.normalized)) {
     fail(file, what + " must be " + shapes +
-                   " of FLOAT, or of UNSIGNED_BYTE or UNSIGNED_SHORT with "
-                   "normalized true (type " +
-                   std::to_string(a.type) + ", componentType " + std::to_string(a.componentType) +
+                   (instances ? " of FLOAT (ROTATION: or of BYTE or SHORT with normalized true)"
+                              : " of FLOAT, or of UNSIGNED_BYTE or UNSIGNED_SHORT with normalized true") +
+                   " (type " + std::to_string(a.type) + ", componentType " + std::to_string(a.componentType) +
                    (a.normalized ? ", normalized" : "") + "): " + kReexport);
   }
   if (a.count != vertex_count) {
-    fail(file, what + " has " + str(a.count) + " entries, POSITION has " + str(vertex_count) +
-                   "; an attribute has one per vertex: " + kReexport);
+    fail(file, what + " has " + str(a.count) + " entries, " +
+                   (instances ? "the node's first instancing attribute has " + str(vertex_count) +
+                                    "; each has one per instance: "
+                              : "POSITION has " + str(vertex_count) + "; an attribute has one per vertex: ") +
+                   kReexport);
   }
   Elements elements = read_elements(model, accessor, size * components, file, what);
   std::vector<float> values(elements.count * components);
@@ -209,7 +219,10 @@ std::vector<float> read_attribute_floats(const tinygltf::Model& model, int acces
       if (is_float) {
         std::memcpy(&v, p, 4);
       } else {
-        v = float(read_unsigned(p, size)) / (size == 1 ? 255.0f : 65535.0f);
+        v = is_signed ? std::max(float(std::int16_t(size == 1 ? std::int8_t(p[0]) : read_unsigned(p, 2))) /
+                                     (size == 1 ? 127.0f : 32767.0f),
+                                 -1.0f)
+                      : float(read_unsigned(p, size)) / (size == 1 ? 255.0f : 65535.0f);
       }
       if (!std::isfinite(v)) {
         fail(file, what + " entry " + str(i) + " is not finite (" + std::to_string(v) + "): " + kReexport);
@@ -283,6 +296,13 @@ std::vector<glm::vec4> read_colors(const tinygltf::Model& model, int accessor, s
     colors[i] = glm::vec4(c[0], c[1], c[2], components == 4 ? c[3] : 1.0f);  // VEC3: opaque
   }
   return colors;
+}
+
+std::vector<float> read_instance_attribute(const tinygltf::Model& model, int accessor, int components,
+                                           std::size_t instances, const std::string& file, const std::string& what) {
+  const bool ok = accessor_at(model, accessor, file, what).type == (components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3);
+  return read_attribute_floats(model, accessor, ok ? components : 0, instances, file, what,
+                               components == 4 ? "VEC4" : "VEC3", true);
 }
 
 }  // namespace pt::gltf

@@ -1,8 +1,10 @@
-// The glTF 2.0 loader of the contract (README.md) "Scenes": every triangle primitive of the default
-// scene with node transforms applied, metallic-roughness factors as materials (gltf_materials.cpp),
+// The glTF 2.0 loader of the contract (README.md) "Scenes": every triangle primitive of the chosen
+// scene (which, and what it draws: gltf_primitives.cpp) with node transforms and instances applied,
+// metallic-roughness factors as materials (gltf_materials.cpp),
 // KHR_lights_punctual point lights and the first camera (both gltf_cameras_lights.cpp). Checks of
 // the file itself live behind gltf_validate.h; what is not modelled is named once on stderr.
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,10 +16,12 @@
 
 #include "common/base/error.h"
 #include "common/scene/gltf_materials.h"
+#include "common/scene/gltf_precheck_uris.h"
 #include "common/scene/gltf_scene_builder.h"
 #include "common/scene/gltf_textures.h"
 #include "common/scene/gltf_validate.h"
 #include "common/scene/scene_loading.h"
+#include "common/scene/scene_sanity.h"
 
 namespace pt {
 
@@ -25,19 +29,11 @@ namespace {
 
 using gltf::fail;
 
-// tinygltf looks for buffers in the scene's folder, then in the working directory; only
-// the scene's folder counts (user_data is the folder, "" for the working directory).
-bool exists_in_scene_folder(const std::string& file, void* user_data) {
-  const std::string& base = *static_cast<const std::string*>(user_data);
-  if (!base.empty() && file.compare(0, base.size(), base) != 0) return false;
-  return tinygltf::FileExists(file, nullptr);
-}
-
 tinygltf::Model parse_model(gltf::SourceFile& source, const std::string& path) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&gltf::keep_image_bytes, nullptr);  // OpenImageIO decodes them (gltf_images.cpp)
-  loader.SetFsCallbacks({&exists_in_scene_folder, &tinygltf::ExpandFilePath, &tinygltf::ReadWholeFile,
-                         &tinygltf::WriteWholeFile, &source.base_dir});
+  gltf::detail::SceneFolder folder{source.base_dir, gltf::detail::scene_root(source.base_dir), path};
+  loader.SetFsCallbacks(gltf::detail::scene_folder_callbacks(&folder));
   tinygltf::Model model;
   std::string err, warn;  // tinygltf's warnings concern images, which are not used
   unsigned size = unsigned(source.bytes.size());
@@ -47,9 +43,13 @@ tinygltf::Model parse_model(gltf::SourceFile& source, const std::string& path) {
                                              reinterpret_cast<const char*>(source.bytes.data()), size,
                                              source.base_dir);
   if (!ok) {
+    // What the prechecks leave to tinygltf are violations of the specification (a required
+    // property missing, one of the wrong type), which its first line names.
     std::string first = err.substr(0, err.find('\n'));
     while (!first.empty() && (first.back() == '.' || first.back() == ' ')) first.pop_back();
-    fail(path, (first.empty() ? "tinygltf could not read it" : first) + "; " + gltf::kReexport);
+    if (first.size() > 200) first = first.substr(0, 200) + "...";
+    fail(path, "the glTF library (tinygltf) cannot read it: " +
+                   (first.empty() ? std::string("it gives no reason") : first) + "; " + gltf::kReexport);
   }
   return model;
 }
@@ -80,17 +80,6 @@ bool all_finite(const glm::dmat4& m) {
     }
   }
   return true;
-}
-
-// The roots of the default scene (scene 0 when none is named; every root node when
-// the file has no scenes).
-std::vector<int> scene_roots(const tinygltf::Model& model, const std::vector<int>& parents) {
-  if (!model.scenes.empty()) return model.scenes[model.defaultScene == -1 ? 0 : model.defaultScene].nodes;
-  std::vector<int> roots;
-  for (std::size_t i = 0; i < parents.size(); ++i) {
-    if (parents[i] == -1) roots.push_back(int(i));
-  }
-  return roots;
 }
 
 }  // namespace
@@ -127,34 +116,39 @@ void SceneBuilder::add_node(int index, const tinygltf::Node& node, const glm::dm
   if (!all_finite(world))
     fail(file_, where + ": its world transform overflows 32-bit floats: " + gltf::kReexport);
   if (node.camera != -1) add_camera(node.camera, world, node, where);
-  if (node.mesh != -1) add_mesh(node.mesh, world);
+  if (node.mesh != -1) {
+    std::vector<glm::dmat4> worlds = gltf::instance_transforms(model_, index, file_);
+    for (glm::dmat4& w : worlds) {
+      w = world * w;  // an instance's TRS is in the node's space
+      if (!all_finite(w))
+        fail(file_, where + ": an EXT_mesh_gpu_instancing instance's world transform overflows 32-bit floats: " +
+                        gltf::kReexport);
+    }
+    add_mesh(node.mesh, worlds);
+  }
   auto light = node.extensions.find("KHR_lights_punctual");
   if (light != node.extensions.end()) add_light(light->second.Get("light").GetNumberAsInt(), world);
 }
 
-void SceneBuilder::add_mesh(int mesh_index, const glm::dmat4& world) {
+void SceneBuilder::add_mesh(int mesh_index, const std::vector<glm::dmat4>& worlds) {
   const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
     const tinygltf::Primitive& prim = mesh.primitives[p];
     std::string where = "meshes[" + std::to_string(mesh_index) + "].primitives[" + std::to_string(p) + "]";
     if (!prim.targets.empty())
       warn_once(file_ + ": scene has morph targets; they are not modelled (base shape)");
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
-      warn_once(file_ + ": scene has primitives of mode " + std::to_string(prim.mode) +
-                " (points, lines, strips or fans); only triangle lists (mode 4) are drawn");
-      continue;
-    }
+    if (prim.mode < TINYGLTF_MODE_TRIANGLES) continue;  // points and lines: counted by count_draws
     auto position = prim.attributes.find("POSITION");
     if (position == prim.attributes.end()) {
       warn_once(file_ + ": " + where + " has no POSITION; it is skipped");
       continue;
     }
-    add_primitive(prim, position->second, where, world);
+    add_primitive(prim, position->second, where, worlds);
   }
 }
 
 void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_accessor, const std::string& where,
-                                 const glm::dmat4& world) {
+                                 const std::vector<glm::dmat4>& worlds) {
   std::string what = "accessors[" + std::to_string(position_accessor) + "] (POSITION of " + where + ")";
   std::vector<glm::vec3> positions = gltf::read_positions(model_, position_accessor, file_, what);
   std::vector<std::uint32_t> indices;
@@ -164,7 +158,7 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
   } else {
     for (std::uint32_t i = 0; i < positions.size(); ++i) indices.push_back(i);
   }
-  if (indices.size() % 3 != 0) {
+  if (prim.mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0) {
     fail(file_, what + " has " + std::to_string(indices.size()) +
                     " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
   }
@@ -193,6 +187,13 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
     attributes_.assign(scene_.triangles.size(), no_triangle_attributes());
     attributes_on_ = true;
   }
+  indices = gltf::triangulate(prim.mode, indices);
+  for (const glm::dmat4& world : worlds) add_triangles(indices, positions, world, material, uv, colors);
+}
+
+void SceneBuilder::add_triangles(const std::vector<std::uint32_t>& indices, const std::vector<glm::vec3>& positions,
+                                 const glm::dmat4& world, uint material, const std::vector<glm::vec2>& uv,
+                                 const std::vector<glm::vec4>& colors) {
   for (std::size_t t = 0; t < indices.size(); t += 3) {
     glm::vec3 p[3];
     for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::dvec4(positions[indices[t + k]], 1.0));
@@ -226,18 +227,33 @@ uint SceneBuilder::material_index(int gltf_index) {
 
 }  // namespace gltf
 
-Scene load_gltf(const std::string& path) {
+Scene load_gltf(const std::string& path, const std::string& scene_choice) {
   gltf::SourceFile source = gltf::read_and_precheck(path);
   tinygltf::Model model = parse_model(source, path);
   std::vector<int> parents = gltf::check_model(model, path);
+  const std::vector<int> roots = gltf::choose_scene(model, parents, scene_choice, path);
   warn_unmodelled(model, path);
+  const gltf::DrawCount count = gltf::count_draws(model, roots);
+  const std::string skipped = gltf::skipped_text(count);
+  check_triangle_budget(count.triangles, count.overflowed, count.attributes, path);
   gltf::SceneBuilder builder(model, path);
-  for (int root : scene_roots(model, parents)) builder.add_tree(root);
+  for (int root : roots) builder.add_tree(root);
   Scene scene = builder.take();
+  if (scene.triangles.empty()) {
+    std::string why = skipped.empty() ? "" : skipped;
+    if (scene.degenerate_triangles > 0) {
+      why += (why.empty() ? "" : "; ") + std::to_string(scene.degenerate_triangles) +
+             " triangle(s) without area (zero or non-finite) skipped";
+    }
+    if (why.empty()) why = "the scene drawn places no mesh with triangles (modes 4, 5, 6)";
+    throw Error(kExitBadScene, path + ": no triangles to draw: " + why);
+  }
+  if (!skipped.empty()) warn_once(path + ": " + skipped);
   if (scene.degenerate_triangles > 0) {
     warn_once(path + ": " + std::to_string(scene.degenerate_triangles) +
               " degenerate triangle(s) (zero area or non-finite) skipped");
   }
+  check_scene_sanity(scene, path);
   return scene;
 }
 

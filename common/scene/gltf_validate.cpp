@@ -28,6 +28,31 @@ void warn_unsupported_extensions(const tinygltf::Model& model, const std::string
   if (!ignored.empty()) warn_once(file + ": scene uses extensions " + ignored + "; they are not modelled");
 }
 
+// EXT_mesh_gpu_instancing: TRANSLATION, ROTATION and SCALE (each optional) name accessors of
+// one count, the instances; their types are checked as they are read (read_instance_attribute).
+void check_instancing(const tinygltf::Model& model, const tinygltf::Node& node, const std::string& where,
+                      const std::string& file) {
+  auto ext = node.extensions.find("EXT_mesh_gpu_instancing");
+  if (ext == node.extensions.end() || !ext->second.Has("attributes")) return;
+  const tinygltf::Value& attributes = ext->second.Get("attributes");
+  const std::string w = where + ".extensions.EXT_mesh_gpu_instancing.attributes";
+  if (!attributes.IsObject()) fail(file, w + " is not an object: " + std::string(kReexport));
+  std::string first;
+  std::size_t count = 0;
+  for (const char* name : {"TRANSLATION", "ROTATION", "SCALE"}) {
+    if (!attributes.Has(name)) continue;
+    const tinygltf::Value& v = attributes.Get(name);
+    if (!v.IsInt()) fail(file, w + "." + name + " is not an integer: " + std::string(kReexport));
+    check_index(file, v.GetNumberAsInt(), model.accessors.size(), w + "." + name, "accessors");
+    const std::size_t n = model.accessors[std::size_t(v.GetNumberAsInt())].count;
+    if (!first.empty() && n != count) {
+      fail(file, w + "." + name + " has " + str(n) + " instances, " + first + " has " + str(count) +
+                     ": every instancing attribute has one per instance; " + kReexport);
+    }
+    if (first.empty()) first = name, count = n;
+  }
+}
+
 void check_node(const tinygltf::Model& model, std::size_t i, const std::string& file) {
   const tinygltf::Node& node = model.nodes[i];
   std::string where = "nodes[" + str(i) + "]";
@@ -45,6 +70,7 @@ void check_node(const tinygltf::Model& model, std::size_t i, const std::string& 
     }
     check_index(file, light->second.Get("light").GetNumberAsInt(), model.lights.size(), w, "lights");
   }
+  check_instancing(model, node, where, file);
   // Transforms: a full matrix, or translation / rotation / scale of the right lengths
   const std::pair<const std::vector<double>*, std::pair<const char*, std::size_t>> parts[] = {
       {&node.matrix, {"matrix", 16}},
@@ -139,6 +165,11 @@ std::vector<int> check_model(const tinygltf::Model& model, const std::string& fi
     for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
       const tinygltf::Primitive& prim = model.meshes[m].primitives[p];
       std::string where = "meshes[" + str(m) + "].primitives[" + str(p) + "]";
+      if (prim.mode < 0 || prim.mode > 6) {
+        fail(file, where + ".mode is " + std::to_string(prim.mode) +
+                       ", not one of glTF's modes 0-6 (points, lines, line loop, line strip, triangles, triangle "
+                       "strip, triangle fan): " + kReexport);
+      }
       if (prim.material != -1)
         check_index(file, prim.material, model.materials.size(), where + ".material", "materials");
       if (prim.indices != -1)

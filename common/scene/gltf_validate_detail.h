@@ -15,7 +15,7 @@ namespace pt::gltf::detail {
 
 // The extensions this renderer reads: the one list. gltf_precheck.cpp refuses any other in
 // extensionsRequired; gltf_validate.cpp names the others in extensionsUsed once.
-inline const std::set<std::string> kSupportedExtensions = {"KHR_materials_emissive_strength",
+inline const std::set<std::string> kSupportedExtensions = {"EXT_mesh_gpu_instancing", "KHR_materials_emissive_strength",
                                                            "KHR_materials_transmission", "KHR_materials_ior",
                                                            "KHR_lights_punctual", "KHR_texture_transform"};
 
