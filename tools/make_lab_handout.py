@@ -13,7 +13,11 @@ repository without .git and build folders, in which
     opening comment), are removed: they grade the class (tools/grade_lab.py builds the
     teacher's tree), but the students never see them (docs/labs/teachers.md);
   - the known-wrong answers of labs/mutants.h (each is an answer with one thing wrong) are
-    removed too, down to the file's opening comment (the check build then has no mutants).
+    removed too, down to the file's opening comment (the check build then has no mutants);
+  - the comments of the reference files, which name the formulas, are cut (a one-line note
+    opens each instead), and in the docs every piece of code (a `span` or a line of a code
+    block) that quotes a statement of the reference bodies which no other source file holds
+    is replaced by a note (issue 47: the errata and the stage2 chapter quoted lab 2's weight).
 usage: tools/make_lab_handout.py N DEST     (DEST must not exist yet)"""
 import os
 import re
@@ -75,6 +79,69 @@ def strip_sources(dest, lab):
         with open(path, "w", encoding="utf-8") as fh:
             fh.write("\n".join(out))
     return names
+
+
+def strip_reference_comments(dest, lab):
+    """Cuts every comment line of lab N's reference files; a one-line note opens each instead."""
+    for rel in REFERENCE_FILES[lab]:
+        path = os.path.join(dest, rel)
+        lines = docs_check.read_lines(path)
+        keep = [line for line in lines if not line.lstrip().startswith("//")
+                or line.lstrip().startswith("// The reference code is not in the lab")]
+        keep = [re.sub(r"\s*//.*$", "", line) if "#endif" in line else line for line in keep]
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write("\n".join([f"// In the lab {lab} handout the functions of this file are yours to write, in "
+                                f"labs/lab{lab}.glsl (docs/labs/lab{lab}.md)."] + keep))
+
+
+def squeeze(text):
+    return re.sub(r"\s+", "", text)
+
+
+def answer_statements(root, lab):
+    """The statements of lab N's reference bodies (squeezed, without 'return', a declaration's
+    left side or ';') that are long enough to be telling, name a variable or function, and that
+    no other source file of the kernel and stages holds: what the docs must not quote."""
+    statements = set()
+    for rel in REFERENCE_FILES[lab]:
+        lines = docs_check.read_lines(os.path.join(root, rel))
+        for i, line in enumerate(lines):
+            end = docs_check.block_end(lines, i) if DEFINITION.match(line) else None
+            for body_line in (lines[i + 1:end] if end is not None else []):
+                code = body_line.split("//")[0].strip().rstrip(";")
+                code = re.sub(r"^(return\s+|(\w+\s+)?\w+\s*=\s*)", "", code)
+                names = [n for n in re.findall(r"\b[A-Za-z_]\w*", code) if not re.fullmatch(r"k[A-Z]\w*", n)]
+                if len(squeeze(code)) >= 12 and names:  # a constant alone (1 / (2 pi)) says no more than the lab page
+                    statements.add(squeeze(code))
+    elsewhere = ""
+    for rel in source_files(root):
+        if rel not in REFERENCE_FILES[lab] and not rel.startswith(("tests/", "labs/")):
+            elsewhere += squeeze(open(os.path.join(root, rel), encoding="utf-8", errors="replace").read())
+    return sorted(s for s in statements if s not in elsewhere)
+
+
+def strip_doc_quotes(dest, lab, statements):
+    """Replaces each `span` and code-block line of the docs that holds one of statements by a
+    note; returns the files changed."""
+    note = f"(lab {lab}'s answer: not in its handout)"
+    changed = []
+    for md in docs_check.markdown_files(dest):
+        text = open(md, encoding="utf-8").read()
+        lines, out, fenced = text.split("\n"), [], False
+        for line in lines:
+            if docs_check.FENCE.match(line):
+                fenced = not fenced
+            elif fenced and any(s in squeeze(line) for s in statements):
+                line = re.match(r"\s*", line).group(0) + "// " + note
+            elif not fenced:
+                line = re.sub(r"`[^`]+`", lambda m: note if any(s in squeeze(m.group(0)) for s in statements)
+                              else m.group(0), line)
+            out.append(line)
+        if out != lines:
+            with open(md, "w", encoding="utf-8") as fh:
+                fh.write("\n".join(out))
+            changed.append(os.path.relpath(md, dest))
+    return changed
 
 
 def source_files(dest, top=""):
@@ -213,6 +280,8 @@ def main():
         print(f"make_lab_handout: no function found in {', '.join(REFERENCE_FILES[lab])}", file=sys.stderr)
         return 1
     strip_docs(dest, lab, names)
+    strip_doc_quotes(dest, lab, answer_statements(root, lab))
+    strip_reference_comments(dest, lab)
     regions = strip_regions(dest, lab)
     held_back = strip_held_back(dest) + [(rel, 1) for rel in strip_held_back_files(dest)]
     # The shorter bodies move the lines below them: renumber the docs' line references.

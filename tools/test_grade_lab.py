@@ -1,42 +1,51 @@
 #!/usr/bin/env python3
 """Test of tools/grade_lab.py (grading a class's lab submissions; tooling for teachers, not a
-part of the article): bad usage exits 2 with one line; then labs 2 and 4 are graded on fixture
-submissions made here from the reference functions, which are renamed and called by wrappers,
-so that no line of their bodies is quoted here (the handout ships this file without them).
-Each submission must get its verdict line; the other reference file of the lab (lab 2's
-roulette, lab 4's emission rule) is appended to each as it is. Lab 2
-(common/kernel/uniform_hemisphere.glsl, russian_roulette.glsl):
+part of the article). Two parts:
+  --fast (ctest entry grade_lab_fast, in ./tutorial test; seconds, no lab build): bad usage exits
+    2 with one line; without bubblewrap the grader says so in one line and grades nothing; the
+    source check accepts every honest fixture below and REFUSES each malicious one with its
+    reason; the sandbox keeps a command from writing outside its folder, from the network and
+    from the project tree, cuts off 1 GB of output, and hands the grader a report pipe that
+    no file write reaches; a report with text besides Catch2's is not taken; every row of each
+    lab page's table "If a test fails" names a test of that lab (PT_TESTS --list-test-names-only);
+    grades.csv quotes a field that holds the separator. Exit 77 (skipped) for the sandbox part
+    where bubblewrap cannot run.
+  (default; ctest entry grade_lab, label grading; minutes) labs 2 and 4 graded on fixture
+    submissions made here from the reference functions, which are renamed and called by
+    wrappers, so that no line of their bodies is quoted here (the handout ships this file
+    without them). Each submission must get its verdict line; the other reference file of the
+    lab (lab 2's roulette, lab 4's emission rule) is appended to each as it is. Lab 2
+    (common/kernel/uniform_hemisphere.glsl, russian_roulette.glsl):
   a_correct          the reference                                  PASS
   b_syntax_error     a wrapper less a semicolon, graded right       COMPILE ERROR at labs/lab2.glsl
-                     after a correct one (issue 24: the stale
-                     binaries of a_correct passed)
-  c_pdf_2pi          pdf = 2 pi instead of 1 / (2 pi)               FAIL, the furnace among the criteria
-  d_theta_uniform    theta uniform instead of cos(theta)            FAIL, the chi-square among the criteria
-  e_convention/      u.x and u.y swapped: another convention,       PASS (the project fixes no
-    lab2.glsl        right in distribution                          convention: docs/monte_carlo.md)
-  f_endless_loop     while (true) {} in the sampler                 TIMEOUT
+                     after a correct one (issue 24)
+  c_pdf_2pi          pdf = 2 pi instead of 1 / (2 pi)               FAIL, the pdf test named, suspect
+  d_theta_uniform    theta uniform instead of cos(theta)            FAIL, the chi-square named, suspect
+  e_convention/      u.x and u.y swapped: another convention,       PASS
+    lab2.glsl        right in distribution
+  f_endless_loop     a loop on an unsigned i >= 0 in the sampler    TIMEOUT, with g++'s warning on it
   g_crash            a read far out of the materials' bounds        CRASH SIGSEGV
   h_empty/           a folder without lab2.glsl                     COMPILE ERROR no lab2.glsl
-  m_NAME             each other known-wrong answer of labs/mutants.h FAIL, not put down to a
-                     (d_theta_uniform is the eighth), the renamed     convention
-                     reference wrapped to make it
-and grades.csv and grades.xml hold one row and one testcase per submission. Lab 4
-(common/kernel/triangle_light.glsl, emission_rule.glsl):
-  a_correct          the reference                                  PASS
-  b_pdf_doubled      the sample's pdf twice the right one           FAIL, the mean of 1/pdf among the criteria
-  c_pdf_mismatch     triangle_light_pdf twice the sample's pdf      FAIL, the held-back test among them
-  m_NAME             each known-wrong answer of labs/mutants.h       FAIL, not put down to a
-                     (checked against the file's list)               convention
-The mutants of labs 3, 5 and 6, whose builds this test does not make, are graded by mutation
-in the check build only (the lab_mutant_NAME entries of tests/CMakeLists.txt).
-usage: tools/test_grade_lab.py [WORK]   (ctest entry grade_lab; WORK: lab 2's build, and WORK_lab4
-lab 4's, kept between runs so that only the first run builds each lab from nothing, ~7 min
-each on 2 cores; PT_GRADE_TEST_TIMEOUT: seconds for one lab 2 submission's tests, default 90
-(lab 4's, without an endless loop among them, have 300); PT_GRADE_TEST_LABS: the labs to
-grade, default "2,4")"""
+  m_NAME             each other known-wrong answer of labs/mutants.h FAIL with a suspect
+  r_includes_reference  #includes the reference files                REFUSED
+  r_writes_outside   no pdf, and C++ behind #ifdef __cplusplus that  REFUSED (with the source check
+                     plants files in the work copy, the repository   off: FAIL, every write stopped by
+                     and the build and copies the reference          the sandbox, nothing planted)
+  r_rewrites_report  no pdf, and C++ that writes a passing report   REFUSED (check off: FAIL or
+                     into every file and fd it can at exit          REFUSED, never PASS)
+  r_prints_1gb       the reference, and C++ that prints 1 GB        REFUSED (check off: REFUSED,
+                                                                     the pipe's cap)
+and a summary line, grades.csv and grades.xml with one row and one testcase per submission.
+Lab 4 (common/kernel/triangle_light.glsl, emission_rule.glsl): a_correct PASS, b_pdf_doubled and
+c_pdf_mismatch FAIL (the latter through the held-back test), each mutant FAIL.
+usage: tools/test_grade_lab.py --fast [PT_TESTS]
+       tools/test_grade_lab.py [WORK]   (WORK: lab 2's build, and WORK_lab4 lab 4's, kept between
+       runs; PT_GRADE_TEST_TIMEOUT: seconds for one lab 2 submission's tests, default 90;
+       PT_GRADE_TEST_LABS: the labs to grade, default "2,4")"""
 import csv
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -99,7 +108,84 @@ def write(folder, files, also=""):
             fh.write(text)
 
 
-def lab2_fixtures(folder):
+# C++ that a lab file can hide from GLSL behind #ifdef __cplusplus: the attacks of issue 47.
+# The file is included inside the kernel's namespace, so the system calls are declared here
+# under names of their own (asm labels), with C linkage.
+ATTACK_DECLARATIONS = r"""
+#ifdef __cplusplus
+extern "C" int grade_attack_open(const char*, int, ...) __asm__("open");
+extern "C" long grade_attack_write(int, const void*, unsigned long) __asm__("write");
+extern "C" long grade_attack_read(int, void*, unsigned long) __asm__("read");
+extern "C" int grade_attack_close(int) __asm__("close");
+"""
+ATTACK_END = "#endif\n"
+
+
+def plant_attack(targets, reference, copy_to):
+    """C++ that, as the program starts, writes a file at each of targets and copies reference to copy_to."""
+    paths = ", ".join(f'"{t}"' for t in targets)
+    return ATTACK_DECLARATIONS + f"""struct GradeAttackPlant {{
+  GradeAttackPlant() {{
+    const char* targets[] = {{{paths}}};
+    for (const char* t : targets) {{
+      int fd = grade_attack_open(t, 01 | 0100 | 01000, 0644);
+      if (fd >= 0) {{ grade_attack_write(fd, "planted\\n", 8); grade_attack_close(fd); }}
+    }}
+    char buf[1 << 16];
+    int in = grade_attack_open("{reference}", 0);
+    int out = grade_attack_open("{copy_to}", 01 | 0100 | 01000, 0644);
+    long n = in >= 0 ? grade_attack_read(in, buf, sizeof buf) : -1;
+    if (n > 0 && out >= 0) grade_attack_write(out, buf, (unsigned long)n);
+  }}
+}};
+static GradeAttackPlant grade_attack_plant;
+""" + ATTACK_END
+
+
+def report_attack(files):
+    """C++ that, at exit, writes a passing Catch2 report into each of files and every fd from 1 to 63."""
+    paths = ", ".join(f'"{f}"' for f in files)
+    fake = ('<?xml version=\\"1.0\\" encoding=\\"UTF-8\\"?>\\n<Catch name=\\"pt_tests\\">\\n'
+            '<OverallResults successes=\\"20\\" failures=\\"0\\" expectedFailures=\\"0\\"/>\\n</Catch>\\n')
+    return ATTACK_DECLARATIONS + f"""struct GradeAttackReport {{
+  ~GradeAttackReport() {{
+    static const char fake[] = "{fake}";
+    const char* files[] = {{{paths}}};
+    for (const char* f : files) {{
+      int fd = grade_attack_open(f, 01 | 0100 | 01000, 0644);
+      if (fd >= 0) {{ grade_attack_write(fd, fake, sizeof fake - 1); grade_attack_close(fd); }}
+    }}
+    for (int fd = 1; fd < 64; ++fd) grade_attack_write(fd, fake, sizeof fake - 1);
+  }}
+}};
+static GradeAttackReport grade_attack_report;
+""" + ATTACK_END
+
+
+PRINT_ATTACK = ATTACK_DECLARATIONS + """struct GradeAttackPrint {
+  GradeAttackPrint() {
+    static char block[1 << 16];
+    for (unsigned i = 0; i < sizeof block; ++i) block[i] = 'x';
+    for (int k = 0; k < (1 << 14); ++k) grade_attack_write(1, block, sizeof block);  // 1 GiB
+  }
+};
+static GradeAttackPrint grade_attack_print;
+""" + ATTACK_END
+
+REFERENCES_2 = ["common/kernel/uniform_hemisphere.glsl", "common/kernel/russian_roulette.glsl"]
+
+
+def plants(work):
+    """Where r_writes_outside tries to write, and where it copies the reference to."""
+    return ([os.path.join(work, "src", "tools", "grading", "planted_by_student.py"),
+             os.path.join(REPO, "tools", "grading", "planted_by_student.py"),
+             os.path.join(work, "build", "bin", "planted_by_student"), "/planted_by_student"],
+            os.path.join(work, "build", "copied_reference.glsl"))
+
+
+def lab2_fixtures(folder, work=None, out=None):
+    """Lab 2's submissions. work and out (the grading run's folders) aim the attacks."""
+    work, out = work or "/nonexistent", out or "/nonexistent"
     rel = "common/kernel/uniform_hemisphere.glsl"
     renames = {"vec3 sample_uniform_hemisphere(vec2 u)": "reference_sampler",
                "float uniform_hemisphere_pdf()": "reference_pdf"}
@@ -108,6 +194,13 @@ def lab2_fixtures(folder):
         return with_wrappers(rel, renames, f"vec3 sample_uniform_hemisphere(vec2 u) {{\n  {sampler}\n}}\n\n"
                                            f"float uniform_hemisphere_pdf() {{\n  {pdf}\n}}\n")
 
+    weight = {"vec3 uniform_bounce_weight(vec3 f, vec3 wi)": "reference_weight"}
+
+    def bounce(body):
+        return with_wrappers(rel, weight, f"vec3 uniform_bounce_weight(vec3 f, vec3 wi) {{\n  {body}\n}}\n")
+
+    no_pdf = bounce("return reference_weight(f, wi) / (2.0f * kPi);")
+    targets, copy_to = plants(work)
     write(folder, {
         "a_correct.glsl": reference(rel),
         "b_syntax_error.glsl": variant(sampler="return reference_sampler(u)"),
@@ -115,7 +208,9 @@ def lab2_fixtures(folder):
         # The reference's cos(theta) is u.x: feeding it cos of a uniform angle makes theta uniform.
         "d_theta_uniform.glsl": variant(sampler="return reference_sampler(vec2(cos(0.5f * kPi * u.x), u.y));"),
         "e_convention/lab2.glsl": variant(sampler="return reference_sampler(vec2(u.y, u.x));"),
-        "f_endless_loop.glsl": variant(sampler="while (true) {\n  }\n  return reference_sampler(u);"),
+        # A count down on an unsigned i that never ends (g++ warns: always true).
+        "f_endless_loop.glsl": variant(sampler="float acc = 0.0f;\n  for (uint i = 4u; i >= 0u; --i) {\n"
+                                               "    acc += u.x;\n  }\n  return reference_sampler(u + vec2(0.0f * acc));"),
         # A read far past the end of the scene's materials: SIGSEGV on the CPU (the read decides
         # the sample: 0 * x is not folded away without -ffast-math).
         "g_crash.glsl": variant(sampler="return reference_sampler(u + vec2(0.0f * materials[100000000 + int(u.y)].metallic));"),
@@ -126,13 +221,14 @@ def lab2_fixtures(folder):
                                                     "float r = max(length(vec2(v.x, v.y)), 1e-30f);\n  "
                                                     "return vec3(v.x / r, v.y / r, v.z);"),
         "m_uniform_pdf_one_over_pi.glsl": variant(pdf="return 1.0f / kPi;"),
+        # The attacks: each would pass, or plant its files, if the grader let it.
+        "r_includes_reference.glsl": "".join(f'#include "{r}"\n' for r in REFERENCES_2),
+        "r_writes_outside.glsl": no_pdf + plant_attack(targets, os.path.join(work, "src", rel), copy_to),
+        "r_rewrites_report.glsl": no_pdf + report_attack([os.path.join(out, "logs", "r_rewrites_report.tests.xml"),
+                                                          os.path.join(work, "build", "report.xml")]),
+        "r_prints_1gb.glsl": reference(rel) + PRINT_ATTACK,
     }, also=reference("common/kernel/russian_roulette.glsl"))
     # The bounce weight: the printed factor (erratum 1), the cosine or the pdf left out.
-    weight = {"vec3 uniform_bounce_weight(vec3 f, vec3 wi)": "reference_weight"}
-
-    def bounce(body):
-        return with_wrappers(rel, weight, f"vec3 uniform_bounce_weight(vec3 f, vec3 wi) {{\n  {body}\n}}\n")
-
     write(folder, {
         "m_bounce_printed_factor.glsl": bounce("return reference_weight(f, wi) / (4.0f * kPi * kPi);"),
         "m_bounce_no_cosine.glsl": bounce("return reference_weight(f, wi) / max(wi.z, 1e-30f);"),
@@ -238,17 +334,18 @@ vec3 mutant_mirror(uint index, vec3 wi) {
     }, also=reference(rel))
 
 
-def grade(lab, subs, out, work, timeout):
-    """Grades the folder; returns {name: verdict line}."""
+def grade(lab, subs, out, work, timeout, extra=()):
+    """Grades the folder; returns ({name: verdict line}, the summary line)."""
     start = time.monotonic()
-    r = subprocess.run([sys.executable, TOOL, str(lab), subs, "--out", out, "--work", work, "--timeout", timeout],
-                       capture_output=True, text=True)
+    r = subprocess.run([sys.executable, TOOL, str(lab), subs, "--out", out, "--work", work, "--timeout", timeout]
+                       + list(extra), capture_output=True, text=True)
     print(f"grading lab {lab} took {time.monotonic() - start:.0f} s")
     print(r.stdout + r.stderr)
     expect(r.returncode == 0, f"grade_lab.py ran lab {lab} and exits 0")
     for row in csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")):
         print(f"{row['name']}: {row['verdict']}, build {row['build_seconds']} s, tests {row['test_seconds']} s")
-    return dict(line.split(": ", 1) for line in r.stdout.splitlines())
+    lines = r.stdout.splitlines()
+    return dict(line.split(": ", 1) for line in lines[:-1]), (lines[-1] if lines else "")
 
 
 def check_lines(lines, expected):
@@ -257,73 +354,278 @@ def check_lines(lines, expected):
         expect(re.fullmatch(pattern, lines.get(name, "")) is not None, f"{name}: {pattern}", lines.get(name, ""))
 
 
+def check_summary(summary, expected):
+    """The summary line counts the verdicts of expected (name: pattern)."""
+    verdicts = [re.match(r"PASS|FAIL|COMPILE ERROR|TIMEOUT|CRASH|REFUSED", p).group(0) for p in expected.values()]
+    want = ", ".join(f"{v} {verdicts.count(v)}" for v in ("PASS", "FAIL", "COMPILE ERROR", "TIMEOUT", "CRASH", "REFUSED")
+                     if verdicts.count(v) or v != "CRASH")
+    expect(summary == want, f"the summary line is '{want}'", summary)
+
+
+def nothing_planted(work):
+    targets, copy_to = plants(work)
+    left = [t for t in targets + [copy_to] if os.path.exists(t)]
+    expect(not left, "the submission that writes outside its folder planted nothing", ", ".join(left))
+    for t in left:  # so that the next run starts clean
+        os.remove(t)
+
+
+def no_pictures_in_repository():
+    expect(not os.path.exists(os.path.join(REPO, "test_pictures")), "nothing written into the repository (test_pictures/)")
+
+
+# A FAIL line: the test in quotes, its check with the numbers, then the suspect.
+FAIL = r'FAIL "[^"]+": (its check .+ failed with|an exception|FAIL|a fatal error).+ \(suspect: .+\)'
+
+
 def lab2(subs, out, work):
-    lab2_fixtures(subs)
+    lab2_fixtures(subs, work, out)
     mutants = written_mutants(subs, 2, also=["uniform_theta_uniform"])  # that one is d_theta_uniform
-    lines = grade(2, subs, out, work, TIMEOUT)
+    lines, summary = grade(2, subs, out, work, TIMEOUT)
     expected = {
         "a_correct": r"PASS",
         "b_syntax_error": r"COMPILE ERROR labs/lab2\.glsl:\d+(:\d+)?: error: .*",
-        "c_pdf_2pi": r"FAIL (?!\(convention\)).*stage2: furnace box.*->.*",
-        "d_theta_uniform": r"FAIL .*sampling: uniform and cosine hemisphere samples fit their pdfs \(chi-square\) -> .*",
+        "c_pdf_2pi": (r'FAIL "sampling: each hemisphere sampler\'s pdf is the density of its mapping[^"]*": '
+                      r'its check .*\d.* \(suspect: .*uniform_hemisphere_pdf.*\)'),
+        "d_theta_uniform": r'FAIL "sampling: [^"]*": its check .*\d.* \(suspect: .*\)',
         "e_convention": r"PASS",
-        "f_endless_loop": r"TIMEOUT after \S+ s in \".*\"",
+        "f_endless_loop": r"TIMEOUT in .* after \S+ s.* \(warning: labs/lab2\.glsl:\d+(:\d+)?: warning: comparison .* always true.*\)",
         "g_crash": r"CRASH SIGSEGV in \".*\"",
         "h_empty": r"COMPILE ERROR no lab2\.glsl in the submission",
+        "r_includes_reference": r"REFUSED labs/lab2\.glsl:1: includes the reference solution common/kernel/uniform_hemisphere\.glsl",
+        "r_writes_outside": r"REFUSED labs/lab2\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*",
+        "r_rewrites_report": r"REFUSED labs/lab2\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*",
+        "r_prints_1gb": r"REFUSED labs/lab2\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*",
     }
-    for mutant in mutants:  # each known-wrong answer fails, and not as a convention
-        expected["m_" + mutant] = r"FAIL (?!\(convention\)).* -> .*"
+    for mutant in mutants:  # each known-wrong answer fails, with a suspect
+        expected["m_" + mutant] = FAIL
     check_lines(lines, expected)
+    check_summary(summary, expected)
     rows = list(csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")))
     expect([(row["name"], row["verdict"]) for row in rows] ==
-           [(n, re.match(r"PASS|FAIL|COMPILE ERROR|TIMEOUT|CRASH", expected[n]).group(0)) for n in sorted(expected)],
+           [(n, re.match(r"PASS|FAIL|COMPILE ERROR|TIMEOUT|CRASH|REFUSED", expected[n]).group(0)) for n in sorted(expected)],
            "grades.csv: one row per submission with its verdict")
-    expect([row["convention_only"] for row in rows] == ["no"] * len(rows),
-           "grades.csv: no failure is put down to a convention (the project fixes none)")
     suite = ET.parse(os.path.join(out, "grades.xml")).getroot().find("testsuite")
     cases = {c.get("name"): c for c in suite.iter("testcase")}
     expect(sorted(cases) == sorted(expected) and suite.get("tests") == str(len(expected))
-           and suite.get("failures") == str(2 + len(mutants)) and suite.get("errors") == "4",
-           "grades.xml: one JUnit testcase per submission, a failure for each wrong answer, 4 errors")
+           and suite.get("failures") == str(2 + len(mutants)) and suite.get("errors") == "8",
+           "grades.xml: one JUnit testcase per submission, a failure for each wrong answer, 8 errors")
     expect(all(cases[n].find("failure") is None and cases[n].find("error") is None for n in ("a_correct", "e_convention"))
            and cases["c_pdf_2pi"].find("failure").get("type") == "FAIL"
-           and cases["g_crash"].find("error").get("type") == "CRASH", "grades.xml: each testcase's outcome and type")
+           and cases["r_prints_1gb"].find("error").get("type") == "REFUSED", "grades.xml: each testcase's outcome and type")
+    expect(os.path.isfile(os.path.join(out, "logs", "a_correct.pictures", "uniform_hemisphere.png")),
+           "the histogram of a submission is kept in logs/NAME.pictures/")
+    nothing_planted(work)
+    no_pictures_in_repository()
+
+
+def lab2_sandbox_alone(subs, out, work):
+    """The attacks again with the source check off (--unchecked-source): the sandbox alone
+    must keep them from passing, planting files or flooding the grader."""
+    os.makedirs(subs)
+    lab2_fixtures(subs, work, out)
+    for f in os.listdir(subs):
+        if not f.startswith("r_"):
+            path = os.path.join(subs, f)
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+    lines, summary = grade(2, subs, out, work, TIMEOUT, ["--unchecked-source"])
+    check_lines(lines, {
+        "r_includes_reference": r"COMPILE ERROR .*common/kernel/uniform_hemisphere\.glsl.*reference solution.*",
+        # No code runs during the build of pt_lab_tests, and the tests see the build read-only:
+        # every write fails, and its estimator (no pdf) is graded.
+        "r_writes_outside": FAIL,
+        "r_rewrites_report": r"(FAIL|REFUSED) .*",
+        "r_prints_1gb": r"REFUSED .*printed more than \d+ MB.*",
+    })
+    nothing_planted(work)
+    no_pictures_in_repository()
 
 
 def lab4(subs, out, work):
     os.makedirs(subs)
     lab4_fixtures(subs)
     mutants = written_mutants(subs, 4)
-    expected = {
-        "a_correct": r"PASS",
-        "b_pdf_doubled": r"FAIL .*light sampling: the mean of 1/pdf is the solid angle .* -> .*",
-        "c_pdf_mismatch": r"FAIL .*light sampling: triangle_light_pdf is d\^2 / \(cos_y area\) times the pick.* -> .*",
-    }
+    expected = {"a_correct": r"PASS", "b_pdf_doubled": FAIL, "c_pdf_mismatch": FAIL}
     for mutant in mutants:
-        expected["m_" + mutant] = r"FAIL (?!\(convention\)).* -> .*"
-    check_lines(grade(4, subs, out, work, "300"), expected)  # no endless loop among them
+        expected["m_" + mutant] = FAIL
+    lines, summary = grade(4, subs, out, work, "300")  # no endless loop among them
+    check_lines(lines, expected)
+    check_summary(summary, expected)
+    failed = {row["name"]: row["failed_tests"].split("\n")
+              for row in csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8"))}
+    expect("light sampling: the mean of 1/pdf is the solid angle a triangle or a sphere subtends" in failed["b_pdf_doubled"],
+           "b_pdf_doubled fails the mean of 1/pdf", repr(failed["b_pdf_doubled"]))
+    expect(any(n.startswith("light sampling: triangle_light_pdf is d^2 / (cos_y area) times the pick")
+               for n in failed["c_pdf_mismatch"]), "c_pdf_mismatch fails the held-back test", repr(failed["c_pdf_mismatch"]))
+
+
+def bad_usage(tmp):
+    subs = os.path.join(tmp, "empty")
+    os.makedirs(subs)
+    for args, what in (([], "no arguments"), (["2"], "no submissions folder"), (["7", subs], "lab 7"),
+                       (["2", os.path.join(tmp, "missing")], "a missing folder"), (["2", subs], "an empty folder")):
+        r = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
+        expect(r.returncode == 2 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
+               and r.stderr.startswith("grade_lab: "), f"bad usage ({what}) exits 2 with one line", r.stderr)
+
+
+def no_sandbox_refused(tmp):
+    """With no bwrap on PATH the grader says so in one line, exits 1 and grades nothing."""
+    bin_dir, subs = os.path.join(tmp, "bin_without_bwrap"), os.path.join(tmp, "one")
+    os.makedirs(bin_dir)
+    os.makedirs(subs)
+    for tool in ("cmake", "ctest", "prlimit", "setpriv"):
+        if shutil.which(tool):
+            os.symlink(shutil.which(tool), os.path.join(bin_dir, tool))
+    write(subs, {"alice.glsl": reference("common/kernel/uniform_hemisphere.glsl")})
+    r = subprocess.run([sys.executable, TOOL, "2", subs, "--work", os.path.join(tmp, "work_unused")],
+                       capture_output=True, text=True, env={**os.environ, "PATH": bin_dir})
+    expect(r.returncode == 1 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
+           and "bubblewrap" in r.stderr and "--unsealed" in r.stderr,
+           "without bubblewrap: one line that says so and names --unsealed, exit 1, nothing graded", r.stderr)
+
+
+def source_checks(tmp):
+    """The honest fixtures pass the source check; each attack is refused, with its reason."""
+    from grading.source_check import check_source
+    from make_lab_handout import REFERENCE_FILES
+    refs = sorted({r for rels in REFERENCE_FILES.values() for r in rels})
+    subs = os.path.join(tmp, "fixtures")
+    os.makedirs(subs)
+    lab2_fixtures(subs)
+    found = {}
+    for entry in sorted(os.listdir(subs)):
+        path = os.path.join(subs, entry, "lab2.glsl") if os.path.isdir(os.path.join(subs, entry)) else os.path.join(subs, entry)
+        if os.path.isfile(path):
+            found[entry.replace(".glsl", "")] = check_source(open(path, "rb").read(), "labs/lab2.glsl", refs, REPO)
+    refused = {n: why for n, why in found.items() if why}
+    expect(sorted(refused) == ["r_includes_reference", "r_prints_1gb", "r_rewrites_report", "r_writes_outside"],
+           "the source check refuses the four attacks and nothing else", repr(refused))
+    expect(refused["r_includes_reference"] == "labs/lab2.glsl:1: includes the reference solution "
+                                              "common/kernel/uniform_hemisphere.glsl", "it names the reference included")
+    expect(all("'#ifdef __cplusplus'" in refused[n] for n in ("r_prints_1gb", "r_rewrites_report", "r_writes_outside")),
+           "it names the C++ hidden from GLSL", repr(refused))
+    for code, what in ((b'#ifndef GL_SPIRV\n#define GL_SPIRV\nint x;\n#endif\n', "a guard on a name GLSL defines"),
+                       (b"#define CHECK(x) (void)0\n", "a #define of a test macro"),
+                       (b'%:include "common/kernel/box_slab.glsl"\n', "a digraph #include"),
+                       (b'#  include </etc/passwd>\n', "an #include <...>"),
+                       (b'#include "../../tests/common/kernel/test_light_sampling.cpp"\n', "an #include of a test")):
+        expect(check_source(code, "labs/lab2.glsl", refs, REPO) is not None, f"the source check refuses {what}")
+
+
+def sandbox_checks(tmp):
+    """The sandbox's walls, tried with small commands."""
+    from grading.sandbox import Limits, MiB, Sandbox, memory_limit, probe
+    why = probe()
+    if why:
+        print(f"SKIPPED: the sandbox cannot run here: {why}")
+        return False
+    run = os.path.join(tmp, "run")
+    os.makedirs(run)
+    box = Sandbox(True, REPO, {}, {})
+    box.owner_of_writable(run)
+    limits = Limits(20, memory_limit(), 64, 4 * MiB, 2 * MiB, 2 * MiB)
+    outside = os.path.join(tmp, "outside.txt")
+    script = (f"echo in > {run}/inside.txt; echo out > {outside}; echo repo > {REPO}/planted_by_sandbox_test; "
+              f"ls {REPO} >/dev/null 2>&1 && echo SEES_REPO; echo tmp > /tmp/t && echo TMP_OK; "
+              f"python3 -c \"import socket; socket.create_connection(('1.1.1.1', 80), timeout=3)\" 2>/dev/null "
+              f"&& echo NET_OK; echo '<fake/>' > {run}/report.xml; echo real > {{report}}; exit 0")
+    r = box.run(["bash", "-c", script], run, [run], [], {}, limits, 60, report=True)
+    out = r.stdout.decode()
+    expect(os.path.isfile(os.path.join(run, "inside.txt")), "the sandbox writes its own folder")
+    expect(not os.path.exists(outside) and not os.path.exists(os.path.join(REPO, "planted_by_sandbox_test")),
+           "the sandbox writes nothing outside its folder", out)
+    expect("SEES_REPO" not in out and "TMP_OK" in out and "NET_OK" not in out,
+           "the sandbox sees no project tree and no network, and has a /tmp of its own", out)
+    expect(r.report == b"real\n", "the report comes over the grader's pipe, whatever files the sandbox writes",
+           repr(r.report))
+    r = box.run(["bash", "-c", "head -c 1073741824 /dev/zero"], run, [run], [], {}, limits, 60)
+    expect(r.over_cap == "stdout" and len(r.stdout) == limits.stdout_cap and r.seconds < 30,
+           "1 GB on stdout is cut off at the cap and the command killed", f"{r.over_cap} {len(r.stdout)} {r.seconds}")
+    r = box.run(["bash", "-c", "head -c 10000000 /dev/zero > big"], run, [run], [], {}, limits, 60)
+    expect(r.rc != 0 and os.path.getsize(os.path.join(run, "big")) <= limits.file_size,
+           "a file over the size limit is cut off", f"rc {r.rc}")
+    r = box.run(["bash", "-c", "while :; do :; done"], run, [run], [], {}, limits, 2, on_timeout=lambda pid: "spin()")
+    expect(r.timed_out and r.running_function == "spin()" and r.seconds < 10,
+           "an endless loop is killed at the deadline, after on_timeout said where it was")
+    return True
+
+
+def report_checks():
+    """A report with text besides Catch2's, or a test the lab does not run, is not taken."""
+    from grading.lab_tests import read_report
+    doc = ('<?xml version="1.0" encoding="UTF-8"?>\n<Catch name="pt_tests">\n  <Group name="pt_tests">\n'
+           '    <TestCase name="a; b, c" tags="[x]">\n      <OverallResult success="true"/>\n    </TestCase>\n'
+           '    <TestCase name="d" tags="[x]">\n      <Expression success="false" type="CHECK">\n'
+           '        <Original>mean == 2</Original>\n        <Expanded>1.013 == 2</Expanded>\n      </Expression>\n'
+           '      <OverallResult success="false"/>\n    </TestCase>\n  </Group>\n</Catch>\n')
+    rep = read_report(doc.encode(), ["a; b, c", "d"])
+    expect(rep.whole and rep.problem is None and rep.cases[0][:2] == ("a; b, c", True)
+           and rep.cases[1][2] == "its check mean == 2 failed with 1.013 == 2", "a whole report is read", repr(rep.cases))
+    expect(read_report((doc + doc).encode(), ["a; b, c", "d"]).problem is not None, "two reports are refused")
+    expect(read_report(("hello\n" + doc).encode(), ["a; b, c", "d"]).problem is not None, "text before it is refused")
+    expect(read_report(doc.encode(), ["a; b, c"]).problem is not None, "a test the lab does not run is refused")
+    cut = read_report(doc[:doc.index("<OverallResult success=\"false")].encode(), ["a; b, c", "d"])
+    expect(not cut.whole and cut.running == "d" and cut.problem is None, "a report cut short names the running test")
+
+
+def hint_tables(pt_tests):
+    """Every lab page has the table, and each of its rows names a test of the lab's program."""
+    from grading.hints import matches, read_hints
+    names = []
+    if pt_tests:
+        listing = subprocess.run([pt_tests, "--list-test-names-only"], capture_output=True, text=True)
+        names = [n.strip() for n in listing.stdout.splitlines() if n.strip()]
+    for lab in range(1, 7):
+        hints = read_hints(REPO, lab)
+        expect(len(hints) >= 2, f"docs/labs/lab{lab}.md has the table 'If a test fails'")
+        for pattern, suspect in hints:
+            expect(not names or any(matches(pattern, n) for n in names),
+                   f"lab {lab}: the row '{pattern[:60]}' names a test of pt_tests")
+
+
+def csv_quoting(tmp):
+    from grading.reports import write_csv
+    from grading.submission import Grade
+    g = Grade("alice", "/x/alice.glsl")
+    g.verdict, g.detail, g.failed, g.suspect = "FAIL", '"t; u, v": its check a, b failed', ["t; u, v", "w"], "x, y"
+    write_csv(tmp, [g])
+    rows = list(csv.reader(open(os.path.join(tmp, "grades.csv"), encoding="utf-8", newline="")))
+    expect(len(rows) == 2 and rows[1][:4] == ["alice", "FAIL", g.detail, "x, y"] and rows[1][7] == "t; u, v\nw",
+           "grades.csv keeps a field with ',' ';' and quotes whole (Python's csv module)", repr(rows))
+
+
+def fast(pt_tests):
+    sys.path.insert(0, HERE)
+    with tempfile.TemporaryDirectory(prefix="grade_lab_fast_") as tmp:
+        bad_usage(tmp)
+        no_sandbox_refused(tmp)
+        source_checks(tmp)
+        report_checks()
+        hint_tables(pt_tests)
+        csv_quoting(tmp)
+        sealed = sandbox_checks(tmp)
+    return 0 if sealed else 77
 
 
 def main():
+    if len(sys.argv) >= 2 and sys.argv[1] == "--fast":
+        return fast(sys.argv[2] if len(sys.argv) > 2 else None)
     if len(sys.argv) > 2:
-        print("usage: tools/test_grade_lab.py [WORK]", file=sys.stderr)
+        print("usage: tools/test_grade_lab.py --fast [PT_TESTS] | [WORK]", file=sys.stderr)
         return 2
     with tempfile.TemporaryDirectory(prefix="grade_lab_test_") as tmp:
         work = sys.argv[1] if len(sys.argv) == 2 else os.path.join(tmp, "work")
         subs, out = os.path.join(tmp, "submissions"), os.path.join(tmp, "out")
         os.makedirs(subs)
-        for args, what in (([], "no arguments"), (["2"], "no submissions folder"), (["7", subs], "lab 7"),
-                           (["2", os.path.join(tmp, "missing")], "a missing folder"), (["2", subs], "an empty folder")):
-            r = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
-            expect(r.returncode == 2 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
-                   and r.stderr.startswith("grade_lab: "), f"bad usage ({what}) exits 2 with one line", r.stderr)
+        bad_usage(tmp)
         labs = os.environ.get("PT_GRADE_TEST_LABS", "2,4").split(",")
         if "2" in labs:
             lab2(subs, out, work)
+            lab2_sandbox_alone(os.path.join(tmp, "attacks"), os.path.join(tmp, "out_attacks"), work)
         if "4" in labs:
             lab4(os.path.join(tmp, "submissions_lab4"), os.path.join(tmp, "out_lab4"), work + "_lab4")
     return 0
-
 
 
 if __name__ == "__main__":

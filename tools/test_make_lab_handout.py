@@ -4,8 +4,10 @@ article's Eq. 2 to 5, lab 5 the BVH after it, lab 6 stage5_mis's MIS). For each 
   - the handout carries no answer: the reference functions keep only a comment and a return,
     no chapter shows their code, and no file of the handout (code, docs, tests, tools) holds
     the body of any function of the lab's reference files, nor a [lab N answer] region of
-    the teacher's tree (whitespace and // comments aside); every function the student's
-    labs/labN.glsl defines has its reference among those functions;
+    the teacher's tree (whitespace and // comments aside), no doc quotes a statement of those
+    bodies that no other source file holds (issue 47), and the reference files keep none of
+    their comments (which named the formulas); every function the student's labs/labN.glsl
+    defines has its reference among those functions;
   - the teacher's held-back tests (Catch2 tag [held_back]; the teacher's tree must hold one)
     are in no handout, nor the known-wrong answers of labs/mutants.h;
   - the handout's docs pass docs_check, the lab's stage and stage4 still compile to SPIR-V in
@@ -103,16 +105,43 @@ def answer(root, lab):
     return {what: code for what, code in bodies.items() if code}
 
 
+def quoted_statements(root, lab):
+    """The statements of lab N's reference bodies, squeezed and without 'return', a declared
+    name or ';', that name a variable or function, are 12 characters or more, and appear in no
+    other source file of the kernel and stages: the pieces a doc must not quote (issue 47)."""
+    found = set()
+    for rel in tool.REFERENCE_FILES[lab]:
+        for body in functions(os.path.join(root, rel)).values():
+            for line in body:
+                code = re.sub(r"^(return\s+|(\w+\s+)?\w+\s*=\s*)", "", line.split("//")[0].strip().rstrip(";"))
+                if len(squeeze([code])) >= 12 and any(not re.fullmatch(r"k[A-Z]\w*", n)
+                                                      for n in re.findall(r"\b[A-Za-z_]\w*", code)):
+                    found.add(squeeze([code]))
+    others = "".join(squeeze(docs_check.read_lines(os.path.join(root, rel))) for rel in source_files(root)
+                     if rel not in tool.REFERENCE_FILES[lab] and not rel.startswith(("tests/", "labs/")))
+    return {s for s in found if s not in others}
+
+
 def leaks(root, handout, lab):
     """Where the handout of lab N still holds its answer (the teacher's tree is root)."""
     bodies = answer(root, lab)
+    statements = quoted_statements(root, lab)
+    found_comments = []
+    for rel in tool.REFERENCE_FILES[lab]:
+        comments = [line.strip() for line in docs_check.read_lines(os.path.join(handout, rel))
+                    if line.strip().startswith("//")]
+        kept = [c for c in comments[1:] if not c.startswith("// The reference code is not in the lab")]
+        if kept:
+            found_comments.append(f"{rel} keeps a comment of the reference: '{kept[0][:60]}'")
     student = set(functions(os.path.join(root, "labs", f"lab{lab}.glsl")))
     references = {what.split("#")[1] for what in bodies if "#" in what}
     found = [f"labs/lab{lab}.glsl asks for {name}, which no reference file of lab {lab} defines"
-             for name in sorted(student - references)]
+             for name in sorted(student - references)] + found_comments
     for rel, text in text_files(handout):
         code = squeeze(text.split("\n"))
         found += [f"{rel} holds {what}" for what, body in bodies.items() if body in code]
+        if rel.endswith(".md"):
+            found += [f"{rel} quotes lab {lab}'s statement #{k}" for k, st in enumerate(sorted(statements)) if st in code]
         if rel.endswith(SOURCE_ENDINGS) and str(lab) in {m.group(1) for m in REGION_START.finditer(text)}:
             found.append(f"{rel} keeps a [lab {lab} answer] region")
     return found

@@ -1,8 +1,8 @@
 """The lab's tests, for tools/grade_lab.py (grading a class's lab submissions; tooling for
 teachers, not a part of the article): which of pt_tests's Catch2 tests grade lab LAB (the
 ctest entries labelled labLAB, less EXCLUDED), and reading the Catch2 XML report of a run,
-finished or cut short by a kill, into the test cases that passed or failed, with the first
-line of why each failed."""
+which comes over a pipe the grader holds, finished or cut short by a kill, into the test
+cases that passed or failed, each failure in words with the numbers its check saw."""
 import json
 import os
 import signal
@@ -57,68 +57,106 @@ def lab_specs(ctest, build, lab):
     return [",".join(specs)]  # one argument: Catch2 ORs the comma-separated specs (several arguments AND)
 
 
-def test_names(build, specs):
-    """The names of the tests of the lab build's test program that specs select."""
-    listing = subprocess.run([os.path.join(build, "bin", TEST_TARGET), "-#", "--list-test-names-only"] + specs,
+def tag_specs(tags, lab):
+    """The Catch2 spec of the lab's group tags (pt_lab_tests.json), EXCLUDED's tests left out."""
+    return [",".join(tag + "".join("~" + e for e in EXCLUDED[lab]) for tag in tags)]
+
+
+def test_names(build, specs, target=TEST_TARGET):
+    """The names of the tests of the lab build's test program that specs select (the program
+    built from the repository's own lab file, before any submission)."""
+    listing = subprocess.run([os.path.join(build, "bin", target), "-#", "--list-test-names-only"] + specs,
                              capture_output=True, text=True)
     return [l for l in listing.stdout.splitlines() if l.strip()]
 
 
 def short(text, limit=240):
-    line = " ".join(text.strip().splitlines()[0].split()) if text.strip() else ""
+    line = " ".join(text.split()) if text.strip() else ""
     return line if len(line) <= limit else line[:limit - 3] + "..."
 
 
 def failure_reason(case):
-    """The first line of why a Catch2 <TestCase> failed: its first failed assertion (with the
-    INFO just before it), exception, FAIL message or fatal condition."""
+    """Why a Catch2 <TestCase> failed, in words: its first failed check with the values it saw
+    (and the INFO just before it), or its exception, FAIL message or fatal condition."""
     infos = []
     for el in case.iter():
         if el.tag == "Info":
             infos.append(el.text or "")
         elif el.tag == "Expression":
+            fatal = el.find("FatalErrorCondition")
+            if fatal is not None:  # Catch2 caught a signal here
+                return f"a fatal error: {short(fatal.text or '', 200)}"
             if el.get("success") == "false":
-                orig = (el.findtext("Original") or "").strip()
-                expanded = (el.findtext("Expanded") or "").strip()
-                reason = f"{el.get('type', 'CHECK')}({short(orig)})"
+                orig = short(el.findtext("Original") or "", 120)
+                expanded = short(el.findtext("Expanded") or "", 160)
+                reason = f"its check {orig} failed"
                 if expanded and expanded != orig:
-                    reason += f" with {short(expanded)}"
+                    reason += f" with {expanded}"
                 exc = el.find("Exception")
                 if exc is not None:
-                    reason += f": exception {short(exc.text or '')}"
+                    reason += f" (exception: {short(exc.text or '', 160)})"
                 if infos and short(infos[-1]):
-                    reason += f" [{short(infos[-1], 160)}]"
+                    reason += f" ({short(infos[-1], 200)})"
                 return reason
             infos = []
         elif el.tag in ("Exception", "FatalErrorCondition", "Failure") and el is not case:
-            return f"{el.tag}: {short(el.text or '')}"
-    return "failed (no assertion recorded)"
+            what = {"Exception": "an exception", "FatalErrorCondition": "a fatal error", "Failure": "FAIL"}[el.tag]
+            return f"{what}: {short(el.text or '', 200)}"
+    return "it failed (no check recorded)"
 
 
-def read_catch_xml(path):
-    """(finished test cases as (name, success, reason), the name of a test case left unfinished).
-    A report cut short by a kill is read as far as it goes."""
+class Report:
+    """The Catch2 XML report of one run, read over the pipe the grader holds: the finished test
+    cases as (name, passed, reason), the test left unfinished, whether the document is whole,
+    and what is wrong with it when it is not the test program's report of the lab's tests."""
+
+    def __init__(self):
+        self.cases, self.running, self.whole, self.problem = [], None, False, None
+
+
+def read_report(data, expected):
+    """The Report of the bytes the test program wrote on the report pipe. expected: the names of
+    the lab's tests, in which every case must be, once."""
+    rep = Report()
+    text = data.decode("utf-8", errors="replace")
+    start = text.find("<?xml")
+    if text.strip() and (start < 0 or text[:start].strip()):
+        rep.problem = "the report pipe holds text before Catch2's report"
     parser = ET.XMLPullParser(events=("start", "end"))
+    ended, closing = False, False
     try:
-        with open(path, encoding="utf-8", errors="replace") as fh:
-            parser.feed(fh.read())
-    except (OSError, ET.ParseError):
-        pass
-    cases, running = [], None
-    try:
-        for event, el in parser.read_events():
-            if el.tag != "TestCase":
-                continue
-            if event == "start":
-                running = el.get("name")
+        # Line by line, so that what follows the end of the first document is told apart.
+        for piece in text[max(start, 0):].splitlines(keepends=True) + [None]:
+            if piece is None:
+                closing = True
+                parser.close()
             else:
-                result = el.find("OverallResult")
-                ok = result is not None and result.get("success") == "true"
-                cases.append((el.get("name"), ok, "" if ok else failure_reason(el)))
-                running = None
-    except ET.ParseError:
-        pass
-    return cases, running
+                parser.feed(piece)
+            for event, el in parser.read_events():
+                if el.tag == "Catch" and event == "end":
+                    ended = True
+                if el.tag != "TestCase":
+                    continue
+                if event == "start":
+                    rep.running = el.get("name")
+                else:
+                    result = el.find("OverallResult")
+                    ok = result is not None and result.get("success") == "true"
+                    rep.cases.append((el.get("name"), ok, "" if ok else failure_reason(el)))
+                    rep.running = None
+        rep.whole = ended
+    except ET.ParseError as e:
+        if ended:  # a second document, or text after the first
+            rep.problem = f"the report pipe holds more than Catch2's report ({short(str(e), 80)})"
+        elif not closing:  # not cut short: broken inside
+            rep.problem = f"the report is not well-formed ({short(str(e), 80)})"
+    names = [n for n, _, _ in rep.cases]
+    unknown = sorted(set(names) - set(expected))
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if rep.problem is None and (unknown or twice):
+        rep.problem = (f"the report names a test the lab does not run: \"{short(unknown[0], 80)}\"" if unknown
+                       else f"the report holds \"{short(twice[0], 80)}\" twice")
+    return rep
 
 
 def signal_name(rc):

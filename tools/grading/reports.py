@@ -18,14 +18,20 @@ def fresh_logs(out):
     return logs
 
 
+CSV_COLUMNS = ["name", "verdict", "detail", "suspect", "warnings", "tests_passed", "tests_total", "failed_tests",
+               "convention_only", "build_seconds", "test_seconds", "submission"]
+
+
 def write_csv(out, grades):
+    """OUT/grades.csv by Python's csv module: a field that holds a comma, a quote or a newline
+    is quoted, so test names with ';' or ',' stay one field."""
     with open(os.path.join(out, "grades.csv"), "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
-        w.writerow(["name", "verdict", "convention_only", "tests_passed", "tests_total", "failed_criteria", "detail",
-                    "build_seconds", "test_seconds", "submission"])
+        w.writerow(CSV_COLUMNS)
         for g in grades:
-            w.writerow([g.name, g.verdict, "yes" if g.convention_only else "no", g.passed, g.total, "; ".join(g.failed),
-                        g.detail, f"{g.build_s:.1f}", f"{g.test_s:.1f}", g.submission or ""])
+            w.writerow([g.name, g.verdict, g.detail, g.suspect, " | ".join(g.warnings), g.passed, g.total,
+                        "\n".join(g.failed), "yes" if g.convention_only else "no", f"{g.build_s:.1f}",
+                        f"{g.test_s:.1f}", g.submission or ""])
 
 
 def write_junit(out, lab, grades, elapsed):

@@ -1,18 +1,24 @@
 """The students' submissions and the grade of each, for tools/grade_lab.py (grading a class's
 lab submissions; tooling for teachers, not a part of the article). A submission is a file
-NAME.glsl or a folder NAME/ that holds labLAB.glsl (or labs/labLAB.glsl). Grading one puts its
-file in place of the work copy's labs/labLAB.glsl (with what depends on it deleted), rebuilds
-pt_tests (a failure is COMPILE ERROR, with the first compiler line), runs the lab's tests in a
-process group killed after --timeout seconds (TIMEOUT; a signal is CRASH) and reads their
-Catch2 report into PASS or FAIL with the first line of each failed test's reason."""
+NAME.glsl or a folder NAME/ that holds labLAB.glsl (or labs/labLAB.glsl). Grading one checks
+that it is GLSL only (source_check.py; else REFUSED), puts it in place of the work copy's
+labs/labLAB.glsl (with what depends on it deleted), rebuilds the lab's tests in the sandbox
+(a failure is COMPILE ERROR, with the first error and the warnings on the student's file),
+runs them in the sandbox, reads their report over a pipe the grader holds, and turns it into
+one plain verdict: PASS, FAIL, COMPILE ERROR, TIMEOUT, CRASH or REFUSED."""
 import os
 import re
+import shutil
 import sys
-import time
 
-from . import BUILD_TIMEOUT, die, run_group
-from .lab_tests import CONVENTION, read_catch_xml, signal_name
-from .work_build import cmake_build, first_error, put_lab_file
+from . import BUILD_TIMEOUT, die
+from .hints import sentence, suspect_for
+from .lab_tests import CONVENTION, read_report, short, signal_name
+from .sandbox import BUILD_LIMITS, FOLDER_CAP, MiB, TEST_LIMITS
+from .source_check import check_source
+from .work_build import build_target, first_error, put_lab_file, snapshot, undo_writes, unexpected_writes
+
+VERDICTS = ["PASS", "FAIL", "COMPILE ERROR", "TIMEOUT", "CRASH", "REFUSED"]
 
 
 def find_submissions(folder, lab, skip):
@@ -36,124 +42,224 @@ def find_submissions(folder, lab, skip):
 class Grade:
     def __init__(self, name, submission):
         self.name, self.submission = name, submission
-        self.verdict, self.detail = "", ""
-        self.failed, self.convention_only = [], False
+        self.verdict, self.detail, self.suspect = "", "", ""
+        self.warnings, self.failed, self.convention_only = [], [], False
         self.passed = self.total = 0
         self.build_s = self.test_s = 0.0
 
     def line(self):
-        return f"{self.name}: {self.verdict}" + (f" {self.detail}" if self.detail else "")
+        text = f"{self.name}: {self.verdict}" + (f" {self.detail}" if self.detail else "")
+        if self.suspect:
+            text += f" (suspect: {self.suspect})"
+        if self.warnings:
+            text += " (warning: " + "; ".join(self.warnings) + ")"
+        return text
+
+
+def summary(grades):
+    """'PASS 4, FAIL 4, COMPILE ERROR 2, TIMEOUT 1, REFUSED 1': every verdict but a CRASH that
+    did not happen, in this order."""
+    counts = {v: sum(1 for g in grades if g.verdict == v) for v in VERDICTS}
+    return ", ".join(f"{v} {counts[v]}" for v in VERDICTS if counts[v] or v != "CRASH")
 
 
 def grade_one(g, ctx):
     """Grades g's submission in the lab build of ctx: sets its verdict, detail and counts."""
+    lab = ctx["args"].lab
     if g.submission is None:
-        g.verdict, g.detail = "COMPILE ERROR", f"no lab{ctx['args'].lab}.glsl in the submission"
+        g.verdict, g.detail = "COMPILE ERROR", f"no lab{lab}.glsl in the submission"
         return
-    install(g, ctx)
-    if not build_submission(g, ctx):
-        return
-    rc, timed_out = run_tests(g, ctx)
-    judge(g, ctx, rc, timed_out)
-
-
-def install(g, ctx):
-    """g's file as the work copy's labs/labLAB.glsl, with no output of the build left that
-    depends on it (exits when pt_tests survives: no grade would be safe)."""
-    a = ctx["args"]
     with open(g.submission, "rb") as fh:
-        code = fh.read()
-    put_lab_file(ctx["build"], ctx["lab_file"], code)
+        code = fh.read(2 * MiB)
+    why = None if ctx["args"].unchecked_source else check_source(code, f"labs/lab{lab}.glsl", ctx["references"], ctx["src"])
+    if why:
+        g.verdict, g.detail = "REFUSED", why
+        return
+    outputs = install(g, ctx, code)
+    if not build_submission(g, ctx, outputs):
+        return
+    run_tests(g, ctx)
+
+
+def install(g, ctx, code):
+    """g's file as the work copy's labs/labLAB.glsl, with no output of the build left that
+    depends on it (exits when the test program survives: no grade would be safe)."""
+    outputs = put_lab_file(ctx["build"], ctx["lab_file"], code)
     if os.path.exists(ctx["test_bin"]):
+        a = ctx["args"]
         die(f"{ctx['test_bin']} survived the deletion of what depends on labs/lab{a.lab}.glsl: the build's "
             f"dependencies were not understood, so no grade would be safe; delete {a.work} and run again", 1)
+    return outputs
 
 
-def build_submission(g, ctx):
-    """Rebuilds pt_tests with g's file; False (and COMPILE ERROR) when it does not build."""
+def write_log(path, *parts):
+    with open(path, "wb") as fh:
+        for part in parts:
+            fh.write(part)
+
+
+def student_warnings(log_text, lab):
+    """The compilers' warnings on the student's file, each once, shortest form first seen."""
+    seen = []
+    for line in log_text.splitlines():
+        m = re.search(rf"(labs/lab{lab}\.glsl:\d+(?::\d+)?: warning: .*)", line)
+        if not m:
+            m = re.search(rf"WARNING: \S*(labs/lab{lab}\.glsl:\d+): (.*)", line)
+            text = f"{m.group(1)}: warning: {m.group(2)}" if m else None
+        else:
+            text = m.group(1)
+        if text:
+            text = short(text, 200)
+            if text not in seen:
+                seen.append(text)
+    return seen[:3]
+
+
+def build_submission(g, ctx, outputs):
+    """Rebuilds the lab's tests with g's file, sealed; False (and the verdict) when it does not
+    build, or when code run during the build (the test program lists its tests after it links)
+    wrote files of the build folder that are not outputs of the student's file (outputs)."""
+    box, build = ctx["sandbox"], ctx["build"]
+    before = snapshot(build)
+    r = box.run(build_target(ctx["cmake"], build, ctx["args"].jobs, ctx["target"]), build, [build], [ctx["src"]],
+                box.hidden_in_build, BUILD_LIMITS, BUILD_TIMEOUT)
+    g.build_s = r.seconds
     build_log = os.path.join(ctx["logs"], f"{g.name}.build.log")
-    t0 = time.monotonic()
-    rc, timed_out = cmake_build(ctx["cmake"], ctx["build"], ctx["args"].jobs, build_log)
-    g.build_s = time.monotonic() - t0
-    if timed_out or rc != 0 or not os.path.isfile(ctx["test_bin"]):
-        g.verdict = "COMPILE ERROR"
-        g.detail = (f"the build took over {BUILD_TIMEOUT} s" if timed_out
-                    else first_error(build_log, ctx["src"]))
-        return False
-    return True
+    write_log(build_log, r.stdout, r.stderr)
+    text = (r.stdout + r.stderr).decode("utf-8", errors="replace")
+    g.warnings = student_warnings(text, ctx["args"].lab)
+    planted = unexpected_writes(before, snapshot(build), outputs)
+    if planted and not undo_writes(build, planted):
+        die(f"{g.name}'s build rewrote the build's configuration ({planted[0]}): delete {ctx['work']} and run again", 1)
+    if planted:
+        g.verdict = "REFUSED"
+        g.detail = (f"code run during its build wrote {len(planted)} file(s) it does not make: "
+                    + ", ".join(planted[:3]) + (", ..." if len(planted) > 3 else ""))
+    elif r.over_cap:
+        g.verdict, g.detail = "REFUSED", f"its build printed more than {BUILD_LIMITS.stdout_cap // MiB} MB"
+    elif r.timed_out:
+        g.verdict, g.detail = "COMPILE ERROR", f"the build took over {BUILD_TIMEOUT} s"
+    elif r.rc != 0 or not os.path.isfile(ctx["test_bin"]):
+        g.verdict, g.detail = "COMPILE ERROR", first_error(build_log, ctx["src"])
+        g.warnings = [w for w in g.warnings if w not in g.detail]
+    else:
+        return True
+    return False
 
 
-def test_env():
-    """The environment of the tests: without the check build's switches or a seed offset."""
-    return {k: v for k, v in os.environ.items() if k not in ("PT_LAB_STUB", "PT_LAB_MUTANT", "PT_TEST_SEED_OFFSET")}
+def folder_size(path):
+    total = 0
+    for root, _, files in os.walk(path):
+        for f in files:
+            try:
+                total += os.lstat(os.path.join(root, f)).st_size
+            except OSError:
+                pass
+    return total
+
+
+def fresh_run_folder(g, ctx):
+    """WORK/run/NAME, empty: the one folder the tests may write (their pictures)."""
+    run = os.path.join(ctx["work"], "run", g.name)
+    shutil.rmtree(run, ignore_errors=True)
+    os.makedirs(run)
+    ctx["sandbox"].owner_of_writable(run)
+    return run
+
+
+def keep_pictures(run, logs, name):
+    """The tests' pictures (PNG files up to 4 MB) copied to logs/NAME.pictures/."""
+    kept = 0
+    for root, _, files in os.walk(run):
+        for f in files:
+            path = os.path.join(root, f)
+            if f.endswith(".png") and not os.path.islink(path) and os.path.getsize(path) <= 4 * MiB:
+                os.makedirs(os.path.join(logs, f"{name}.pictures"), exist_ok=True)
+                shutil.copyfile(path, os.path.join(logs, f"{name}.pictures", f))
+                kept += 1
+    return kept
 
 
 def run_tests(g, ctx):
-    """Runs the lab's tests on g's build, killed after --timeout seconds, with their Catch2 XML
-    in logs/NAME.tests.xml. Returns (the return code, timed out)."""
-    xml_path = os.path.join(ctx["logs"], f"{g.name}.tests.xml")
-    test_log = os.path.join(ctx["logs"], f"{g.name}.tests.log")
-    t0 = time.monotonic()
-    rc, timed_out = run_group([ctx["test_bin"], "-#", "-r", "xml", "-o", xml_path] + ctx["specs"], test_log,
-                              ctx["args"].timeout, env=test_env())
-    g.test_s = time.monotonic() - t0
-    return rc, timed_out
+    """Runs the lab's tests on g's build in the sandbox (the build read-only, the held-back
+    tests' sources hidden, WORK/run/NAME the only folder it may write) and judges them."""
+    box = ctx["sandbox"]
+    run = fresh_run_folder(g, ctx)
+    cmd = [ctx["test_bin"], "-#", "-r", "xml", "-o", "{report}"] + ctx["specs"]
+    env = {"PT_TEST_PICTURES": os.path.join(run, "test_pictures")}
+    r = box.run(cmd, run, [run], [ctx["src"], ctx["build"]], box.hidden_in_tests, TEST_LIMITS,
+                ctx["args"].timeout, env=env, report=True, on_timeout=ctx.get("on_timeout"))
+    g.test_s = r.seconds
+    write_log(os.path.join(ctx["logs"], f"{g.name}.tests.log"), r.stdout, r.stderr)
+    write_log(os.path.join(ctx["logs"], f"{g.name}.tests.xml"), r.report)
+    written = folder_size(run)
+    keep_pictures(run, ctx["logs"], g.name)
+    shutil.rmtree(run, ignore_errors=True)
+    judge(g, ctx, r, written)
 
 
-def catch_name(name):
-    """A test's name as a Catch2 test spec that selects it alone: a backslash before the
-    characters a spec gives a meaning (a comma separates specs, brackets hold tags)."""
-    return "".join("\\" + c if c in ",[]\\\"" else c for c in name)
-
-
-def crashed_in(g, ctx):
-    """The test in which g's tests die of a signal: each test of the lab run alone, in the order
-    of the run, until one dies (logs/NAME.crash.log holds the last one's output); None if none
-    does. (Catch2 names the test in its report of the signal, but a report written to a file is
-    buffered and a fatal signal may end the process before it is written out.)"""
-    log = os.path.join(ctx["logs"], f"{g.name}.crash.log")
-    for name in ctx["tests"]:
-        rc, _ = run_group([ctx["test_bin"], "-#", catch_name(name)], log, ctx["args"].timeout, env=test_env())
-        if rc < 0:
-            return name
-    return None
-
-
-def judge(g, ctx, rc, timed_out):
-    """g's verdict from the run of its tests: TIMEOUT, CRASH, PASS or FAIL."""
-    cases, running = read_catch_xml(os.path.join(ctx["logs"], f"{g.name}.tests.xml"))
+def judge(g, ctx, r, written):
+    """g's verdict from the sealed run of its tests."""
+    rep = read_report(r.report, ctx["tests"])
     g.total = len(ctx["tests"])
-    g.passed = sum(1 for _, ok, _ in cases if ok)
-    where = f" in \"{running}\"" if running else ""
-    if timed_out:
-        g.verdict, g.detail = "TIMEOUT", f"after {ctx['args'].timeout:g} s{where}"
-        return
-    if rc < 0:
-        # Catch2 reports the signal in the test case it stopped, then dies of it; its XML file
-        # may not have been written out that far, and then each test run alone says (crashed_in).
-        fatal = next((n for n, ok, r in cases if r.startswith("FatalErrorCondition")), running)
-        fatal = fatal or crashed_in(g, ctx)
-        g.verdict, g.detail = "CRASH", signal_name(rc) + (f" in \"{fatal}\"" if fatal else "")
-        return
-    failed = [(n, r) for n, ok, r in cases if not ok]
-    if rc == 0 and not failed and len(cases) == g.total:
-        g.verdict = "PASS"
-        return
-    g.verdict = "FAIL"
+    g.passed = sum(1 for _, ok, _ in rep.cases if ok)
+    died = (r.rc < 0 or r.rc > 128) and not rep.whole
+    sig = -r.rc if r.rc < 0 else r.rc - 128
+    if r.over_cap:
+        cap = {"stdout": TEST_LIMITS.stdout_cap, "stderr": TEST_LIMITS.stderr_cap, "report": TEST_LIMITS.stdout_cap}
+        g.verdict, g.detail = "REFUSED", f"the tests printed more than {cap[r.over_cap] // MiB} MB on {r.over_cap}"
+    elif written > FOLDER_CAP:
+        g.verdict, g.detail = "REFUSED", f"the tests wrote {written // MiB} MB into their folder (at most {FOLDER_CAP // MiB} MB)"
+    elif rep.problem:
+        g.verdict, g.detail = "REFUSED", f"the test report is not the test program's own: {rep.problem}"
+    elif r.timed_out or (died and sig == 24):  # SIGXCPU: the CPU-time limit
+        g.verdict = "TIMEOUT"
+        where = r.running_function or (f"test \"{rep.running}\"" if rep.running else None)
+        g.detail = (f"in {where}" if where else "") + (
+            f" after {ctx['args'].timeout:g} s" if r.timed_out else f" after {TEST_LIMITS.cpu_s} s of CPU time")
+        g.detail = g.detail.strip()
+        if r.running_function and rep.running:
+            g.detail += f" (test \"{rep.running}\")"
+        g.suspect = not_written(r)
+    elif died and sig == 25:  # SIGXFSZ
+        g.verdict, g.detail = "REFUSED", f"the tests wrote a file larger than {TEST_LIMITS.file_size // MiB} MB"
+    elif died:
+        g.verdict = "CRASH"
+        g.detail = signal_name(-sig) + (f" in \"{rep.running}\"" if rep.running else "")
+    elif any(why.startswith("a fatal error: SIG") for _, ok, why in rep.cases if not ok):
+        # Catch2 caught the signal, ended its report, then died of it.
+        name, why = next((n, w) for n, ok, w in rep.cases if not ok and w.startswith("a fatal error: SIG"))
+        g.verdict, g.detail = "CRASH", f"{why.split()[3]} in \"{name}\""
+    else:
+        failed = [(n, why) for n, ok, why in rep.cases if not ok]
+        if not failed and rep.whole and r.rc == 0 and len(rep.cases) == g.total:
+            g.verdict, g.warnings = "PASS", []
+            return
+        g.verdict = "FAIL"
+        explain_failures(g, ctx, rep, failed, r)
+
+
+def explain_failures(g, ctx, rep, failed, r):
+    """A FAIL's detail: the most telling failed test (the lab page's table) with its first failed
+    check and numbers, how many others failed, and the suspect; the stubs still in place."""
     if not failed:
-        g.failed = [f"pt_tests exited {rc} after {len(cases)} of {g.total} tests"]
-        g.detail = g.failed[0]
+        missing = g.total - len(rep.cases)
+        g.detail = f"the test program ended (exit {r.rc}) with {missing} of the lab's {g.total} tests not run"
+        g.failed = [g.detail]
         return
-    explain_failures(g, failed, os.path.join(ctx["logs"], f"{g.name}.tests.log"))
+    g.failed = [n for n, _ in failed]
+    g.convention_only = all(n in CONVENTION for n in g.failed)
+    name, suspect = suspect_for(ctx["hints"], g.failed)
+    why = dict(failed)[name]
+    others = len(failed) - 1
+    g.detail = sentence(name, why) + (f"; {others} more of the {g.total} tests failed" if others else "")
+    g.suspect = not_written(r) or suspect or ""
 
 
-def explain_failures(g, failed, test_log):
-    """A FAIL's detail: the stubs the tests say are not written yet, then each failed test
-    (marked when only a convention test) with the first line of its reason."""
-    g.convention_only = all(n in CONVENTION for n, _ in failed)
-    parts = []
-    for n, r in failed:
-        g.failed.append(n)
-        parts.append(f"{'(convention) ' if n in CONVENTION else ''}{n} -> {r}")
-    stub = sorted(set(re.findall(r"^lab \d+: (\w+) is not written yet", open(test_log, errors="replace").read(), re.M)))
-    g.detail = (f"(not written: {', '.join(stub)}) " if stub else "") + "; ".join(parts)
+def not_written(r):
+    """The suspect when the lab's stubs ran: the functions they name, else ''."""
+    said = (r.stderr + r.report).decode(errors="replace")
+    stubs = sorted(set(re.findall(r"lab \d+: (\w+) is not written yet", said)))
+    if not stubs:
+        return ""
+    return f"{', '.join(stubs)} {'is' if len(stubs) == 1 else 'are'} not written yet (the stub's line is still there)"

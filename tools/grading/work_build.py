@@ -15,8 +15,9 @@ import re
 import shutil
 import sys
 
-from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die, run_group
-from .lab_tests import lab_specs, test_names
+from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die
+from .lab_tests import lab_specs, tag_specs, test_names
+from .sandbox import BUILD_LIMITS, NOBODY
 
 
 def lock_work(work):
@@ -113,7 +114,8 @@ def dependency_graph(build):
 
 
 def delete_dependents(build, lab_file):
-    """Deletes every output of the build that depends on lab_file; returns how many existed."""
+    """Deletes every output of the build that depends on lab_file; returns them all (relative
+    to build), deleted or not there."""
     users = dependency_graph(build)
     seen, todo = set(), [os.path.normpath(lab_file)]
     while todo:
@@ -121,21 +123,61 @@ def delete_dependents(build, lab_file):
             if out not in seen:
                 seen.add(out)
                 todo.append(out)
-    deleted = 0
-    for out in seen:
+    outputs = {out for out in seen if not os.path.isabs(out)}  # only what the build made
+    for out in outputs:
         path = os.path.join(build, out)
-        if not os.path.isabs(out) and os.path.isfile(path):  # only what the build made
+        if os.path.isfile(path):
             os.remove(path)
-            deleted += 1
-    return deleted
+    return outputs
 
 
 def put_lab_file(build, lab_file, code):
     """Writes code as the work copy's labs/labLAB.glsl (a new file, written now) and deletes
-    every output of the build that depends on it."""
+    every output of the build that depends on it; returns those outputs (relative to build)."""
     with open(lab_file, "wb") as fh:
         fh.write(code)
-    delete_dependents(build, lab_file)
+    return delete_dependents(build, lab_file)
+
+
+def snapshot(build):
+    """{path relative to build: (size, mtime)} of every file of the build folder."""
+    state = {}
+    for root, _, files in os.walk(build):
+        for f in files:
+            path = os.path.join(root, f)
+            try:
+                st = os.lstat(path)
+            except OSError:
+                continue
+            state[os.path.relpath(path, build)] = (st.st_size, st.st_mtime_ns)
+    return state
+
+
+# What a build writes besides its outputs: make's and CMake's bookkeeping, the compilers'
+# depfiles, and the ctest entries that tools/discover_test_groups.py writes after pt_tests.
+BOOKKEEPING = re.compile(r"(\.o\.d|\.d|compiler_depend\.(make|internal|ts)|depend\.make|progress\.(make|marks)|"
+                         r"CMakeFiles/Progress/.*|\.ninja_.*|pt_tests_groups\.cmake|.*_groups.*\.cmake)$")
+
+
+def unexpected_writes(before, after, outputs):
+    """The files that a build changed or made (after against before) that are neither the
+    outputs made from the student's file nor the build's bookkeeping: what code run during
+    the build (the test program lists its tests after it links) wrote on its own."""
+    changed = [p for p, st in after.items() if before.get(p) != st]
+    return sorted(p for p in changed if p not in outputs and not BOOKKEEPING.search(p))
+
+
+def undo_writes(build, paths):
+    """Deletes the files of paths (the build makes again what it needs of them); False when one
+    of them is CMake's own configuration, which a build does not remake."""
+    for rel in paths:
+        if re.search(r"(^|/)(CMakeCache\.txt|Makefile|Makefile2|build\.make|flags\.make|link\.txt|.*\.cmake)$", rel):
+            return False
+        try:
+            os.remove(os.path.join(build, rel))
+        except OSError:
+            pass
+    return True
 
 
 ERROR_LINE = re.compile(r"(:\d+(:\d+)?: (fatal )?error:)|(^ERROR: )|(undefined reference to)|(: error:)")
@@ -158,8 +200,19 @@ def first_error(log_path, src):
     return re.sub(r"^ERROR: (\S+?:\d+): ", r"\1: error: ", pick)
 
 
-def cmake_build(cmake, build, jobs, log_path):
-    return run_group([cmake, "--build", build, "--target", TEST_TARGET, "-j", str(jobs)], log_path, BUILD_TIMEOUT)
+def build_target(cmake, build, jobs, target):
+    """The command that builds target (the lab's tests) in build with jobs compilers."""
+    return [cmake, "--build", build, "--target", target, "-j", str(jobs)]
+
+
+def sealed_build(box, cmake, build, src, jobs, target, log_path):
+    """Builds target in the sandbox (build writable, src read-only, the references hidden);
+    the log in log_path. Returns (return code, timed out)."""
+    r = box.run(build_target(cmake, build, jobs, target), build, [build], [src], box.hidden_in_build,
+                BUILD_LIMITS, BUILD_TIMEOUT)
+    with open(log_path, "ab") as fh:
+        fh.write(r.stdout + r.stderr)
+    return r.rc, r.timed_out
 
 
 def build_is_new(build, a):
@@ -186,44 +239,95 @@ def kept_setup(stamp, lab, fresh, changed):
     return setup
 
 
-def first_build(a, cmake, ctest, fresh, lab_file, setup_log, stamp):
-    """Configures the lab build when fresh, builds it with the repository's own labs/labLAB.glsl
-    (the handout's stub; a failure there is not a student's) and lists the lab's tests. Returns
-    the setup {lab, specs, tests}, written to stamp."""
+def lab_target(build):
+    """(the target that holds the lab's tests, the lab's Catch2 tags or None): pt_lab_tests and
+    its tags when the lab build defines it (tests/CMakeLists.txt writes pt_lab_tests.json),
+    else pt_tests, whose ctest entries then give the tests."""
+    path = os.path.join(build, "pt_lab_tests.json")
+    if os.path.isfile(path):
+        info = json.load(open(path, encoding="utf-8"))
+        return info["target"], info["tags"]
+    return TEST_TARGET, None
+
+
+def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
+    """Configures the lab build, builds its tests with the repository's own labs/labLAB.glsl (the
+    handout's stub; a failure there is not a student's), both in the sandbox, and lists the
+    lab's tests. Returns the setup {lab, target, specs, tests}, written to stamp."""
     src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
-    if fresh:
-        rc, _ = run_group([cmake, "-S", src, "-B", build, "-G", "Unix Makefiles", "-DCMAKE_BUILD_TYPE=Release",
-                           f"-DPT_LAB={a.lab}", "-DPT_CPU_GENERAL_ONLY=ON"], setup_log, BUILD_TIMEOUT)
-        if rc != 0:
-            die(f"the lab build does not configure: see {setup_log}", 1)
+    os.makedirs(build, exist_ok=True)
+    box.owner_of_writable(build)
+    r = box.run([cmake, "-S", src, "-B", build, "-G", "Unix Makefiles", "-DCMAKE_BUILD_TYPE=Release",
+                 f"-DPT_LAB={a.lab}", "-DPT_CPU_GENERAL_ONLY=ON"], build, [build], [src], box.hidden_in_build,
+                BUILD_LIMITS, BUILD_TIMEOUT)
+    with open(setup_log, "ab") as fh:
+        fh.write(r.stdout + r.stderr)
+    if r.rc != 0:
+        die(f"the lab build does not configure: see {setup_log}", 1)
+    target, tags = lab_target(build)
     delete_dependents(build, lab_file)
-    rc, timed_out = cmake_build(cmake, build, a.jobs, setup_log)
+    rc, timed_out = sealed_build(box, cmake, build, src, a.jobs, target, setup_log)
     if rc != 0 or timed_out:
         die(f"the lab build fails with the repository's own labs/lab{a.lab}.glsl, before any submission: "
             f"{first_error(setup_log, src)} (see {setup_log})", 1)
-    specs = lab_specs(ctest, build, a.lab)
-    setup = {"lab": a.lab, "specs": specs, "tests": test_names(build, specs)}
+    specs = tag_specs(tags, a.lab) if tags else lab_specs(ctest, build, a.lab)
+    setup = {"lab": a.lab, "target": target, "specs": specs, "tests": test_names(build, specs, target)}
     if not setup["tests"]:
-        die(f"lab {a.lab}'s specs {specs} select no test of {TEST_TARGET}", 1)
+        die(f"lab {a.lab}'s specs {specs} select no test of {target}", 1)
     with open(stamp, "w", encoding="utf-8") as fh:
         json.dump(setup, fh, indent=1)
     return setup
 
 
-def set_up(repo, a, out, logs, cmake, ctest, count):
-    """Brings the work copy up to date with repo and, the first time and whenever the repository
-    changed since, builds the lab once (first_build). Returns (the work copy's labs/labLAB.glsl,
-    its content, the setup {lab, specs, tests})."""
+def set_up(repo, a, box, out, logs, cmake, ctest, count, hidden):
+    """Brings the work copy up to date with repo, sets the sandbox's placeholders of the files
+    hidden from every build (hidden: repository-relative) and, the first time and whenever the
+    repository changed since, builds the lab once (first_build). Returns (the work copy's
+    labs/labLAB.glsl, its content, the setup {lab, specs, tests})."""
     src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
     changed = sync_tree(repo, src, {a.work, out})
+    box.hidden_in_build = placeholders(a.work, src, hidden, "a reference solution")
     lab_file = os.path.join(src, "labs", f"lab{a.lab}.glsl")
     original = open(lab_file, "rb").read()
     fresh = build_is_new(build, a)
     stamp = os.path.join(a.work, "setup.json")
     setup = kept_setup(stamp, a.lab, fresh, changed)
     print(f"grade_lab: lab {a.lab}, {count} submission(s); the lab build is {build}"
-          + (" (new: the first build takes ~7 min on 2 cores)" if fresh else "")
-          + (", unchanged since the last run" if setup else ""), file=sys.stderr)
+          + (" (new: the first build takes 10-20 min on 2 cores)" if fresh else "")
+          + (", unchanged since the last run" if setup else ""), file=sys.stderr, flush=True)
+    if not fresh and box.as_nobody and os.stat(build).st_uid != NOBODY:
+        box.owner_of_writable(build)  # a build made unsealed (or by an older grader): the sandbox's now
     if setup is None:
-        setup = first_build(a, cmake, ctest, fresh, lab_file, os.path.join(logs, "_setup.log"), stamp)
+        setup = first_build(a, box, cmake, ctest, lab_file, os.path.join(logs, "_setup.log"), stamp)
     return lab_file, original, setup
+
+
+def placeholders(work, src, paths, why):
+    """{path in src: a placeholder file in WORK/hidden} for each of paths (repository-relative)
+    that exists: a file that says why it is not there, with the original's times, so that make
+    sees nothing changed and a submission that includes it does not compile."""
+    folder = os.path.join(work, "hidden")
+    os.makedirs(folder, exist_ok=True)
+    hidden = {}
+    for rel in paths:
+        original = os.path.join(src, rel)
+        if not os.path.isfile(original):
+            continue
+        placeholder = os.path.join(folder, rel.replace(os.sep, "__"))
+        with open(placeholder, "w", encoding="utf-8") as fh:
+            fh.write(f"#error \"{rel} is {why}: a submission does not see it (tools/grade_lab.py)\"\n")
+        st = os.stat(original)
+        os.utime(placeholder, ns=(st.st_atime_ns, st.st_mtime_ns))
+        hidden[original] = placeholder
+    return hidden
+
+
+def held_back_tests(src):
+    """The test sources (repository-relative) that hold a held-back test ([held_back])."""
+    found = []
+    for root, _, files in os.walk(os.path.join(src, "tests")):
+        for f in files:
+            path = os.path.join(root, f)
+            if f.endswith((".cpp", ".h")) and "[held_back]" in open(path, encoding="utf-8", errors="replace").read():
+                found.append(os.path.relpath(path, src))
+    return sorted(found)
