@@ -78,7 +78,7 @@ const double kFurnaceDegrees[] = {0.0, 45.0, 75.0, 87.0};
 
 }  // namespace
 
-TEST_CASE("glTF material: f is the specification's Appendix B, with KHR_materials_specular", "[sampling][gltf_material]") {
+TEST_CASE("glTF material: f is the specification's Appendix B, with KHR_materials_specular", "[gltf_material]") {
   GltfBrdf cases[4];
   cases[0].base = {0.8, 0.3, 0.1}, cases[0].roughness = 0.4;
   cases[1].base = {0.2, 0.5, 0.9}, cases[1].roughness = 0.8, cases[1].ior = 1.8;
@@ -111,7 +111,7 @@ TEST_CASE("glTF material: f is the specification's Appendix B, with KHR_material
   CHECK(m.alpha == Approx(0.09f));
 }
 
-TEST_CASE("glTF material: the layer choice samples its mixture pdf (chi-square)", "[sampling][statistical][gltf_material]") {
+TEST_CASE("glTF material: the layer choice samples its mixture pdf (chi-square)", "[statistical][gltf_material]") {
   const double alphas[] = {0.01, 0.1, 0.5, 1.0};
   const double degrees[] = {0.0, 60.0, 85.0};
   const glm::dvec3 bases[] = {{0.0, 0.0, 0.0}, {0.5, 0.5, 0.5}, {0.9, 0.2, 0.1}};
@@ -144,7 +144,7 @@ TEST_CASE("glTF material: the layer choice samples its mixture pdf (chi-square)"
 
 TEST_CASE("glTF material: white furnace over metallic x roughness: each sampled albedo is the integrated one; "
           "metal never above 1",
-          "[sampling][statistical][gltf_material]") {
+          "[statistical][gltf_material]") {
   const int n = 100000;
   const double tests = 5.0 * 3.0 * 4.0 * 3.0;  // roughness x metallic x angles x channels
   const double z = normal_two_sided_quantile(sidak_alpha(1e-3, tests));
