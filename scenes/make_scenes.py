@@ -208,12 +208,19 @@ def emissive(strength, color):
             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength * peak}}}
 
 
+# Lambertian: metallic 0 and no specular layer (KHR_materials_specular's specularFactor 0),
+# the built-in scenes' diffuse material as a glTF material
+LAMBERT = {"KHR_materials_specular": {"specularFactor": 0.0}}
+
+
 def cornell_room(g):
     """The room of builtin:cornell, [-1, 1]^3 open at +z, with its ceiling light; returns the white material."""
-    white = g.material("white", (0.73, 0.73, 0.73))
-    red = g.material("red", (0.65, 0.05, 0.05))
-    green = g.material("green", (0.12, 0.45, 0.15))
-    light = g.material("light", (0.78, 0.78, 0.78), **emissive(1.0, (17.0, 12.0, 4.0)))
+    white = g.material("white", (0.73, 0.73, 0.73), extensions=LAMBERT)
+    red = g.material("red", (0.65, 0.05, 0.05), extensions=LAMBERT)
+    green = g.material("green", (0.12, 0.45, 0.15), extensions=LAMBERT)
+    light_fields = emissive(1.0, (17.0, 12.0, 4.0))
+    light_fields["extensions"].update(LAMBERT)
+    light = g.material("light", (0.78, 0.78, 0.78), **light_fields)
     # Each wall faces into the room (counter-clockwise seen from inside)
     walls = [("floor", white, [(-1, -1, 1), (1, -1, 1), (1, -1, -1), (-1, -1, -1)]),
              ("ceiling", white, [(-1, 1, -1), (1, 1, -1), (1, 1, 1), (-1, 1, 1)]),
@@ -230,7 +237,7 @@ def cornell_room(g):
 def cornell():
     # The same box as builtin:cornell, seen from z = 3.9
     g = Gltf("make_scenes.py: Cornell box")
-    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength", "KHR_materials_specular"]
     white = cornell_room(g)
     cube = g.mesh("cube", CUBE_POINTS, outward(CUBE_POINTS, quads_to_triangles(CUBE_QUADS)), white)
     g.node(name="short_box", mesh=cube, translation=[0.33, -0.7, 0.3], rotation=about_y(-0.31), scale=[0.3] * 3)

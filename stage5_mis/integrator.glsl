@@ -75,7 +75,7 @@ vec3 Li(Ray ray) {
     vec3 n = surface.front ? surface.n : -surface.n;
     Frame frame = make_frame(n);
     vec3 wo = frame_to_local(frame, -ray.dir);
-    uint lobe = choose_lobe(material, sample_1d());
+    uint lobe = choose_lobe(material, wo, sample_1d());
     vec3 wi;
     if (is_delta_lobe(lobe)) {  // mirror or glass: the one direction they send light
       DeltaBounce bounce = sample_delta_lobe(lobe, material, wo, surface.front, sample_1d());

@@ -1,7 +1,8 @@
 // The materials of the contract (README.md) as functions of local directions (z = the normal on the
 // side the light arrives from): Lambertian diffuse, Schlick-Fresnel conductors (a perfect
 // mirror, or GGX microfacets with Smith's height-correlated masking), smooth glass with
-// exact dielectric Fresnel. f is the BRDF of Eq. (1); delta lobes are sampled, not evaluated.
+// exact dielectric Fresnel; and glTF's dielectric, a GGX layer over a Lambert base
+// (gltf_dielectric.glsl). f is the BRDF of Eq. (1); delta lobes are sampled, not evaluated.
 #ifndef PT_BSDF_GLSL
 #define PT_BSDF_GLSL
 
@@ -117,47 +118,12 @@ vec3 lambert_brdf(vec3 albedo, vec3 wo, vec3 wi) {
   return albedo * (1.0f / kPi);
 }
 
-// Which lobe a surface scatters by: a mixed material (0 < metallic < 1) is the conductor
-// with probability metallic, else the diffuse (the contract (README.md)); u is a uniform number.
-// A conductor with alpha below kGgxMirrorAlpha scatters as the perfect mirror.
-uint choose_lobe(Material m, float u) {
-  uint kind = m.kind;
-  if (has_feature(kFeatureConductor) && kind == kMaterialConductor) {
-    return m.alpha < kGgxMirrorAlpha ? kMaterialMirror : kind;  // alpha ~ 0: a mirror
-  }
-  if (!has_feature(kFeatureMixed) || kind != kMaterialMixed) return kind;
-  if (u >= m.metallic) return kMaterialDiffuse;
-  return m.alpha >= kGgxMirrorAlpha ? kMaterialConductor : kMaterialMirror;
-}
-
-// f of a non-delta lobe (kMaterialDiffuse or kMaterialConductor).
-vec3 eval_lobe(uint lobe, Material m, vec3 wo, vec3 wi) {
-  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_conductor_brdf(m.base_color, m.alpha, wo, wi);
-  return lambert_brdf(m.base_color, wo, wi);
-}
-
 // A direction drawn for a non-delta lobe in proportion to (roughly) f cos, and its pdf
 // (stage3, Eq. 4: importance sampling): cosine for diffuse, GGX visible normals for metal.
 struct LobeSample {
   vec3 wi;    // local direction (may point below the surface: then f = 0)
   float pdf;  // solid-angle density of wi
 };
-
-LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
-  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) {
-    float alpha = m.alpha;
-    vec3 h = sample_ggx_vndf(wo, alpha, u);
-    vec3 wi = 2.0f * dot(wo, h) * h - wo;
-    return LobeSample(wi, ggx_vndf_pdf(wo, wi, alpha));
-  }
-  vec3 wi = sample_cosine_hemisphere(u);
-  return LobeSample(wi, cosine_hemisphere_pdf(wi.z));
-}
-
-float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
-  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.alpha);
-  return cosine_hemisphere_pdf(wi.z);
-}
 
 // A delta bounce: the one direction a mirror or glass sends the light, and the weight
 // f cos / pdf it carries (the delta cancels).
@@ -166,6 +132,53 @@ struct DeltaBounce {
   vec3 weight;  // throughput factor
   float eta2;   // eta^2 after a refraction, whose weight holds radiance's 1 / eta^2; else 1
 };
+
+// The glTF material's dielectric (a specular layer over a base), for glTF files.
+#include "common/kernel/gltf_dielectric.glsl"
+
+// Which lobe a surface scatters by: a mixed material (0 < metallic < 1) is the conductor
+// with probability metallic, else the diffuse (the contract (README.md)); u is a uniform number.
+// A conductor with alpha below kGgxMirrorAlpha scatters as the perfect mirror. A glTF
+// material (kMaterialDielectric) also reads wo: it picks a smooth layer by its Fresnel.
+uint choose_lobe(Material m, vec3 wo, float u) {
+  uint kind = m.kind;
+  if (has_feature(kFeatureConductor) && kind == kMaterialConductor) {
+    return m.alpha < kGgxMirrorAlpha ? kMaterialMirror : kind;  // alpha ~ 0: a mirror
+  }
+  if (has_feature(kFeatureDielectric) && kind == kMaterialDielectric) return choose_gltf_lobe(m, wo, u);
+  if (!has_feature(kFeatureMixed) || kind != kMaterialMixed) return kind;
+  if (u >= m.metallic) return kMaterialDiffuse;
+  return m.alpha >= kGgxMirrorAlpha ? kMaterialConductor : kMaterialMirror;
+}
+
+// f of a non-delta lobe (kMaterialDiffuse, kMaterialConductor, kMaterialDielectric or
+// kLobeSmoothBase).
+vec3 eval_lobe(uint lobe, Material m, vec3 wo, vec3 wi) {
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_conductor_brdf(m.base_color, m.alpha, wo, wi);
+  if (has_feature(kFeatureDielectric)) {
+    if (lobe == kMaterialDielectric) return dielectric_brdf(m, wo, wi);
+    if (lobe == kLobeSmoothBase) return smooth_base_brdf(m, wo, wi);
+  }
+  return lambert_brdf(m.base_color, wo, wi);
+}
+
+LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) {
+    float alpha = m.alpha;
+    vec3 h = sample_ggx_vndf(wo, alpha, u);
+    vec3 wi = 2.0f * dot(wo, h) * h - wo;
+    return LobeSample(wi, ggx_vndf_pdf(wo, wi, alpha));
+  }
+  if (has_feature(kFeatureDielectric) && lobe == kMaterialDielectric) return sample_dielectric(m, wo, u);
+  vec3 wi = sample_cosine_hemisphere(u);
+  return LobeSample(wi, cosine_hemisphere_pdf(wi.z));
+}
+
+float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
+  if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.alpha);
+  if (has_feature(kFeatureDielectric) && lobe == kMaterialDielectric) return dielectric_pdf(m, wo, wi);
+  return cosine_hemisphere_pdf(wi.z);
+}
 
 // Mirror: reflection about the normal, weighted by Schlick's Fresnel with F0 = base colour.
 DeltaBounce sample_mirror(Material m, vec3 wo) {
@@ -186,11 +199,14 @@ DeltaBounce sample_glass(Material m, vec3 wo, bool entering, float u) {
 
 bool is_delta_lobe(uint lobe) {
   return (has_feature(kFeatureMirror) && lobe == kMaterialMirror) ||
-         (has_feature(kFeatureGlass) && lobe == kMaterialGlass);
+         (has_feature(kFeatureGlass) && lobe == kMaterialGlass) ||
+         (has_feature(kFeatureDielectric) && lobe == kLobeSmoothLayer);
 }
 
-// The bounce of a delta lobe (mirror or glass); u picks reflection or refraction of glass.
+// The bounce of a delta lobe (mirror, glass or a smooth layer); u picks reflection or
+// refraction of glass.
 DeltaBounce sample_delta_lobe(uint lobe, Material m, vec3 wo, bool front, float u) {
+  if (has_feature(kFeatureDielectric) && lobe == kLobeSmoothLayer) return sample_smooth_layer(m, wo);
   if (!has_feature(kFeatureGlass) || lobe == kMaterialMirror) return sample_mirror(m, wo);
   return sample_glass(m, wo, front, u);
 }

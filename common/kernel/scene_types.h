@@ -22,6 +22,15 @@ const uint kMaterialMirror = 1u;     // metallic 1, roughness 0: Schlick Fresnel
 const uint kMaterialConductor = 2u;  // metallic 1, roughness > 0: GGX, alpha = roughness^2
 const uint kMaterialGlass = 3u;      // KHR_materials_transmission: smooth dielectric
 const uint kMaterialMixed = 4u;      // 0 < metallic < 1: conductor w.p. metallic, else diffuse
+// The glTF metallic-roughness material of a glTF file (the specification's Appendix B):
+// with probability metallic the conductor (as kMaterialConductor / kMaterialMirror), else
+// the dielectric: a GGX specular layer over a Lambert base, mixed by Fresnel
+// (common/kernel/gltf_dielectric.glsl). Built-in scenes keep the kinds above.
+const uint kMaterialDielectric = 5u;
+// The two lobes of a dielectric whose layer is perfectly smooth (alpha < kGgxMirrorAlpha),
+// which choose_lobe picks between: the layer's mirror reflection (a delta), and the base.
+const uint kLobeSmoothLayer = 6u;
+const uint kLobeSmoothBase = 7u;
 // A GGX conductor smoother than this is a perfect mirror (a delta): below it the float
 // evaluation of D(h) = alpha^2 / (pi (...)^2) at the peak under- and overflows (alpha 0:
 // 0 / 0), and the lobe is narrower than a float direction can resolve anyway (docs/stability.md).
@@ -84,7 +93,8 @@ const uint kFeaturePointLights = 1u << 9u;
 const uint kFeatureSky = 1u << 10u;
 const uint kFeatureTextures = 1u << 11u;        // textures or vertex colours (texture.glsl)
 const uint kFeatureAlphaMask = 1u << 12u;       // alphaMode MASK: holes rays pass (intersect.glsl)
-const uint kFeatureAll = (1u << 13u) - 1u;
+const uint kFeatureDielectric = 1u << 13u;      // glTF's dielectric: specular layer over a base
+const uint kFeatureAll = (1u << 14u) - 1u;
 
 // Textures (common/kernel/texture.glsl, issue #19): what a sampler does at the edges and
 // between texels (glTF's sampler wrapS / wrapT and magFilter), and "no texture".
@@ -138,6 +148,9 @@ struct Material {
   float transmission;  // KHR_materials_transmission's factor
   float ior;           // index of refraction (glass)
   uint kind;           // kMaterial*
+  vec3 specular_f0;    // kMaterialDielectric: the layer's Fresnel F0 per channel (ior,
+                       // KHR_materials_specular's specularColorFactor; at most 1)
+  float specular;      // kMaterialDielectric: the layer's weight (specularFactor, default 1)
 };
 
 // A KHR_lights_punctual light: a point light, a spot light or a directional light.
@@ -262,8 +275,9 @@ static_assert(sizeof(Triangle) == 48);
 static_assert(offsetof(Triangle, p1) == 16 && offsetof(Triangle, p2) == 32);
 static_assert(sizeof(Sphere) == 32);
 static_assert(offsetof(Sphere, radius) == 12 && offsetof(Sphere, material) == 16);
-static_assert(sizeof(Material) == 48);
+static_assert(sizeof(Material) == 64);
 static_assert(offsetof(Material, emission) == 16 && offsetof(Material, alpha) == 32);
+static_assert(offsetof(Material, specular_f0) == 48);
 static_assert(sizeof(PointLight) == 48);
 static_assert(offsetof(PointLight, intensity) == 16 && offsetof(PointLight, direction) == 32);
 static_assert(sizeof(Light) == 16);

@@ -15,9 +15,13 @@
 // The material with metallic and roughness taken from a metallic-roughness texture:
 // make_gltf_material's rule (common/scene/scene.cpp) at this point: metallic 1 is a
 // conductor (a mirror at roughness 0, else GGX with alpha = roughness^2), metallic 0 is
-// diffuse, between the two it is mixed. Glass stays glass (transmission wins).
+// diffuse, between the two it is mixed. Glass stays glass (transmission wins). A glTF
+// material (kMaterialDielectric) stays one: its metallic mixes its two parts.
 Material with_metallic_roughness(Material m, float metallic, float roughness) {
-  if (metallic >= 1.0f) {
+  if (has_feature(kFeatureDielectric) && m.kind == kMaterialDielectric) {
+    m.metallic = clamp(metallic, 0.0f, 1.0f);
+    m.alpha = roughness * roughness;
+  } else if (metallic >= 1.0f) {
     m.kind = roughness > 0.0f ? kMaterialConductor : kMaterialMirror;
     m.metallic = 1.0f;
     m.alpha = roughness * roughness;

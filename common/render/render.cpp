@@ -100,7 +100,8 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
     // stage5: the MIS weights' factors, from a pilot of their own samples (mis_pilot.h). A
     // resumed render or a part runs the same pilot, so it renders the same samples.
     if (backend.mis_pilot() && s.mis_pilot) {
-      result.mis = run_mis_pilot(backend, params, (features & (kFeatureConductor | kFeatureMixed)) != 0u, pass);
+      const bool glossy = (features & (kFeatureConductor | kFeatureMixed | kFeatureDielectric)) != 0u;
+      result.mis = run_mis_pilot(backend, params, glossy, pass);
       params.mis_diffuse = result.mis.diffuse, params.mis_glossy = result.mis.glossy;
     }
   } catch (const Error& e) {  // a device that cannot hold the scene: nothing rendered yet

@@ -101,6 +101,9 @@ Scene every_feature() {
   s.add_sphere({-0.5f, -0.75f, 0.5f}, 0.25f, s.add_material(make_glass(glm::vec3(1.0f), 1.5f)));
   s.add_sphere({0.5f, 0.1f, -0.5f}, 0.2f, s.add_material(make_metal(glm::vec3(0.9f), 0.0f)));
   s.add_sphere({0.0f, 0.6f, 0.3f}, 0.05f, s.add_material(make_diffuse(glm::vec3(0.0f), {20.0f, 20.0f, 30.0f})));
+  GltfPbr plastic;  // a glTF file's material: a GGX layer over a base, a quarter metal
+  plastic.base = {0.8f, 0.3f, 0.2f}, plastic.metallic = 0.25f, plastic.roughness = 0.4f;
+  s.add_sphere({-0.6f, 0.5f, -0.6f}, 0.15f, s.add_material(make_gltf_pbr_material(plastic)));
   add_textured_back_wall(s, true);
   s.point_lights.push_back(make_point_light({0.6f, 0.8f, 0.6f}, {0.3f, 0.3f, 0.2f}));
   s.point_lights.push_back(make_spot_light({-0.6f, 0.9f, -0.6f}, {0.0f, -1.0f, 0.0f}, {0.4f, 0.35f, 0.3f}, 0.3f, 0.5f));

@@ -1,6 +1,6 @@
 // glTF materials as the contract's (see gltf_materials.h): the factors and the extension
 // numbers read, checked against their glTF ranges (and emission against kMaxEmission), and
-// made a pt::Material by make_gltf_material (scene.cpp).
+// made a pt::Material by make_gltf_pbr_material (scene.cpp).
 #include "common/scene/gltf_materials.h"
 
 #include <cstdio>
@@ -45,6 +45,31 @@ std::string printable(const std::string& text) {
   return out + (text.size() > 40 ? "..." : "");
 }
 
+// KHR_materials_specular's specularColorFactor, or white: three numbers, each at least 0.
+glm::vec3 specular_color(const tinygltf::ExtensionMap& extensions, const std::string& where,
+                         const std::string& file) {
+  auto it = extensions.find("KHR_materials_specular");
+  if (it == extensions.end() || !it->second.Has("specularColorFactor")) return glm::vec3(1.0f);
+  const tinygltf::Value& value = it->second.Get("specularColorFactor");
+  std::string name = where + ".extensions.KHR_materials_specular.specularColorFactor";
+  if (!value.IsArray() || value.ArrayLen() != 3) fail(file, name + " needs 3 numbers: " + gltf::kReexport);
+  glm::vec3 color;
+  for (int k = 0; k < 3; ++k) {
+    const tinygltf::Value& c = value.Get(k);
+    if (!c.IsNumber()) fail(file, name + "[" + std::to_string(k) + "] is not a number: " + gltf::kReexport);
+    color[k] = checked_float(file, c.GetNumberAsDouble(), name + "[" + std::to_string(k) + "]", 0.0);
+  }
+  return color;
+}
+
+// The textures of KHR_materials_specular are not read: say so once.
+void warn_specular_textures(const tinygltf::ExtensionMap& extensions, const std::string& file) {
+  auto it = extensions.find("KHR_materials_specular");
+  if (it == extensions.end()) return;
+  if (it->second.Has("specularTexture") || it->second.Has("specularColorTexture"))
+    warn_once(file + ": scene uses KHR_materials_specular textures; they are not modelled (the factors are)");
+}
+
 }  // namespace
 
 Material convert_material(const tinygltf::Model& model, int index, const std::string& file) {
@@ -81,7 +106,19 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
   // MASK cuts holes (gltf_textures.cpp reads its cutoff; intersect.glsl cut_out).
   if (m.alphaMode != "OPAQUE" && m.alphaMode != "MASK")
     warn_once(file + ": scene uses alphaMode " + printable(m.alphaMode) + "; surfaces are drawn opaque");
-  return make_gltf_material(base, metallic, roughness, t, eta, emission, m.doubleSided);
+  // KHR_materials_specular: the dielectric layer's weight and F0 colour (Appendix B's
+  // fresnel_mix as the extension extends it; make_gltf_pbr_material, scene.cpp).
+  double specular = extension_number(m.extensions, "KHR_materials_specular", "specularFactor", 1.0, where, file);
+  warn_specular_textures(m.extensions, file);
+  GltfPbr pbr_material;
+  pbr_material.base = base, pbr_material.metallic = metallic, pbr_material.roughness = roughness;
+  pbr_material.transmission = t, pbr_material.ior = eta;
+  pbr_material.specular =
+      checked_float(file, specular, where + ".extensions.KHR_materials_specular.specularFactor", 0.0, 1.0);
+  pbr_material.specular_color = specular_color(m.extensions, where, file);
+  pbr_material.emission = emission, pbr_material.double_sided = m.doubleSided;
+  pbr_material.textured_metallic_roughness = pbr.metallicRoughnessTexture.index >= 0;
+  return make_gltf_pbr_material(pbr_material);
 }
 
 }  // namespace pt::gltf

@@ -1,6 +1,7 @@
 // glTF materials as the contract's (README.md, "Materials"), for the glTF loader
 // (gltf_loader.cpp): metallic-roughness factors and the KHR_materials_emissive_strength,
-// KHR_materials_transmission and KHR_materials_ior extensions, every number checked.
+// KHR_materials_transmission, KHR_materials_ior and KHR_materials_specular extensions, every
+// number checked.
 #pragma once
 
 #include <string>

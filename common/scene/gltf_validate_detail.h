@@ -17,6 +17,7 @@ namespace pt::gltf::detail {
 // extensionsRequired; gltf_validate.cpp names the others in extensionsUsed once.
 inline const std::set<std::string> kSupportedExtensions = {"EXT_mesh_gpu_instancing", "KHR_materials_emissive_strength",
                                                            "KHR_materials_transmission", "KHR_materials_ior",
+                                                           "KHR_materials_specular",
                                                            "KHR_lights_punctual", "KHR_texture_transform"};
 
 // "A, B, C" for messages.

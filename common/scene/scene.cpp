@@ -96,6 +96,21 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
   return m;
 }
 
+Material make_gltf_pbr_material(const GltfPbr& p) {
+  bool pure_metal = p.metallic >= 1.0f && !p.textured_metallic_roughness;
+  if (p.transmission > 0.0f || pure_metal || p.specular <= 0.0f) {
+    return make_gltf_material(p.base, p.metallic, p.roughness, p.transmission, p.ior, p.emission, p.double_sided);
+  }
+  Material m = base_material(p.base, kMaterialDielectric);
+  m.metallic = p.metallic, m.alpha = p.roughness * p.roughness, m.ior = p.ior;
+  float r = (p.ior - 1.0f) / (p.ior + 1.0f);
+  m.specular_f0 = glm::min(r * r * p.specular_color, glm::vec3(1.0f));
+  m.specular = p.specular;
+  m.emission = p.emission;
+  m.double_sided = p.double_sided ? 1u : 0u;
+  return m;
+}
+
 bool is_emissive(const Material& m) {
   return m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f;
 }

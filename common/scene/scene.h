@@ -91,8 +91,29 @@ Material make_diffuse(glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f), bo
 Material make_metal(glm::vec3 f0, float roughness);  // roughness 0: mirror, else GGX alpha = r^2
 Material make_glass(glm::vec3 tint, float ior);
 // The full glTF metallic-roughness rule (transmission wins, then metallic 0 / 1 / between).
+// Built-in scenes' simple materials: metallic 0 is Lambert (no specular layer).
 Material make_gltf_material(glm::vec3 base, float metallic, float roughness, float transmission,
                             float ior, glm::vec3 emission, bool double_sided);
+
+// A glTF file's material, as the specification's Appendix B defines it (docs/gltf_material.md).
+struct GltfPbr {
+  glm::vec3 base{1.0f};                      // baseColorFactor (rgb)
+  float metallic = 1.0f;                     // metallicFactor
+  float roughness = 1.0f;                    // roughnessFactor
+  float transmission = 0.0f;                 // KHR_materials_transmission's factor
+  float ior = 1.5f;                          // KHR_materials_ior
+  float specular = 1.0f;                     // KHR_materials_specular's specularFactor
+  glm::vec3 specular_color{1.0f};            // its specularColorFactor
+  glm::vec3 emission{0.0f};                  // emissiveFactor x emissive strength
+  bool double_sided = false;                 // doubleSided
+  bool textured_metallic_roughness = false;  // a metallic-roughness texture varies the two
+};
+// Transmission wins (smooth glass, as make_gltf_material). A pure metal (metallic 1, not
+// varied by a texture) is make_metal's conductor, a material without a specular layer
+// (specular 0) make_gltf_material's; every other one is kMaterialDielectric: the metal
+// with probability metallic, else a GGX layer of F0 = min(((ior - 1) / (ior + 1))^2 x
+// specular_color, 1) and weight `specular` over a Lambert base.
+Material make_gltf_pbr_material(const GltfPbr& p);
 
 // KHR_lights_punctual lights (common/kernel/scene_types.h PointLight): intensity in W/sr,
 // a spot's cone angles in radians (0 <= inner <= outer <= pi/2; inner == outer: a hard-edged cone), a directional light's

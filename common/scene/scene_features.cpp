@@ -23,6 +23,10 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
         mask |= kFeatureConductor | (m.alpha < kGgxMirrorAlpha ? kFeatureMirror : 0u);
         break;
       case kMaterialGlass: mask |= kFeatureGlass; break;
+      case kMaterialDielectric:  // the dielectric, and the conductor when metallic is above 0
+        mask |= kFeatureDielectric | kFeatureDiffuse;
+        if (m.metallic > 0.0f) mask |= m.alpha >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror;
+        break;
       default:  // mixed: the diffuse lobe, and the conductor's (a mirror when alpha is 0)
         mask |= kFeatureMixed | kFeatureDiffuse | (m.alpha >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror);
     }
@@ -45,7 +49,13 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
     float m_mid = 0.5f * (std::max(m_lo, 0.0f) + std::min(m_hi, 1.0f));
     for (float metallic : {m_lo, m_mid, m_hi}) {
       for (float roughness : {r_lo, r_hi}) {
-        add_material(make_gltf_material(m.base_color, metallic, roughness, 0.0f, m.ior, m.emission, false));
+        if (m.kind == kMaterialDielectric) {  // stays a glTF material (texture.glsl)
+          Material at = m;
+          at.metallic = std::clamp(metallic, 0.0f, 1.0f), at.alpha = roughness * roughness;
+          add_material(at);
+        } else {
+          add_material(make_gltf_material(m.base_color, metallic, roughness, 0.0f, m.ior, m.emission, false));
+        }
       }
     }
   };
@@ -67,11 +77,11 @@ std::string feature_names(uint mask) {
     uint bit;
     const char* name;
   };
-  const Name groups[3][7] = {
+  const Name groups[3][8] = {
       {{kFeatureTriangles, "triangles"}, {kFeatureSpheres, "spheres"}},
       {{kFeatureDiffuse, "diffuse"}, {kFeatureMirror, "mirror"}, {kFeatureConductor, "GGX conductor"},
-       {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureTextures, "textures"},
-       {kFeatureAlphaMask, "alpha masks"}},
+       {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureDielectric, "glTF dielectric"},
+       {kFeatureTextures, "textures"}, {kFeatureAlphaMask, "alpha masks"}},
       {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
        {kFeaturePointLights, "punctual lights"}, {kFeatureSky, "sky"}}};
   std::string s;

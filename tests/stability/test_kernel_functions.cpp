@@ -146,7 +146,7 @@ TEST_CASE("stability: GGX from alpha 0 to 1 at incidence up to 89.99 degrees: f 
                       0.5f, 1.0f}) {
     m.kind = kMaterialConductor;
     m.alpha = alpha;
-    uint lobe = kernel::choose_lobe(m, 0.5f);
+    uint lobe = kernel::choose_lobe(m, glm::vec3(0.0f, 0.0f, 1.0f), 0.5f);
     INFO("alpha " << alpha);
     if (alpha < pt::kGgxMirrorAlpha) {
       CHECK(lobe == kMaterialMirror);

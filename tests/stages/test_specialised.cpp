@@ -36,11 +36,26 @@ const Case kCases[] = {
     {"builtin:point_in_sphere", glm::vec3(0.0f)},
     {PT_SOURCE_DIR "/scenes/glossy_glass.gltf", glm::vec3(0.2f)},
     {"mixed", glm::vec3(0.0f)},  // the Cornell box with mixed materials, below
+    {"gltf", glm::vec3(0.0f)},   // the Cornell box with glTF files' materials, below
     {PT_SOURCE_DIR "/tests/data/gltf/tex_seed.glb", glm::vec3(0.3f)},  // textures, vertex colours
     {PT_SOURCE_DIR "/tests/data/gltf/tex_mask.gltf", glm::vec3(0.3f)},  // alpha masks
 };
 
+// The Cornell box whose boxes have glTF files' materials: the short one a rough dielectric
+// mixed with metal, the tall one a smooth dielectric (a delta layer over its base).
+Scene gltf_case() {
+  Scene scene = make_builtin_scene("cornell");
+  GltfPbr rough, smooth;
+  rough.base = {0.9f, 0.5f, 0.3f}, rough.metallic = 0.3f, rough.roughness = 0.4f;
+  smooth.base = {0.6f, 0.7f, 0.8f}, smooth.metallic = 0.0f, smooth.roughness = 0.0f;
+  uint r = scene.add_material(make_gltf_pbr_material(rough)), s = scene.add_material(make_gltf_pbr_material(smooth));
+  std::size_t n = scene.triangles.size();
+  for (std::size_t i = n - 24; i < n; i++) scene.triangles[i].material = i < n - 12 ? r : s;
+  return scene;
+}
+
 Scene load_case(const Case& c) {
+  if (std::strcmp(c.scene, "gltf") == 0) return gltf_case();
   if (std::strcmp(c.scene, "mixed") != 0) return load_scene(c.scene);
   Scene scene = make_builtin_scene("cornell");
   // The boxes (the last 24 triangles): the short one a mix of rough metal and diffuse,

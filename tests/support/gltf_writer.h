@@ -49,9 +49,21 @@ class GltfWriter {
     return mesh({p0, p1, p2, p0, p2, p3}, material);
   }
 
+  // A Lambertian material: metallic 0 and no specular layer (KHR_materials_specular's
+  // specularFactor 0), so that the glTF material is the base alone.
   int diffuse(glm::vec3 albedo) {
-    return add("materials", {{"pbrMetallicRoughness",
-                              {{"baseColorFactor", {albedo.x, albedo.y, albedo.z, 1.0}}, {"metallicFactor", 0.0}}}});
+    return material({{"pbrMetallicRoughness",
+                      {{"baseColorFactor", {albedo.x, albedo.y, albedo.z, 1.0}}, {"metallicFactor", 0.0}}},
+                     {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}});
+  }
+
+  // A glTF material as written: {"pbrMetallicRoughness": {...}, "extensions": {...}}.
+  int material(Json fields) { return add("materials", std::move(fields)); }
+
+  // Names an extension in extensionsUsed (the loader warns about those it does not model).
+  void uses(const std::string& extension) {
+    if (!doc_.contains("extensionsUsed")) doc_["extensionsUsed"] = Json::array();
+    doc_["extensionsUsed"].push_back(extension);
   }
 
   int perspective(double yfov, double aspect_ratio = 0.0, const std::string& name = "") {

@@ -15,7 +15,7 @@ TEST_CASE("features: built-in and shipped scenes report what they use", "[featur
   CHECK(scene_features(make_builtin_scene("point_in_sphere"), glm::vec3(0.0f)) == "spheres; diffuse; punctual lights");
   CHECK(scene_features(make_builtin_scene("furnace_sphere"), glm::vec3(0.0f)) == "spheres; diffuse; emissive spheres");
   CHECK(scene_features(load_scene(PT_SOURCE_DIR "/scenes/glossy_glass.gltf"), glm::vec3(0.0f)) ==
-        "triangles; diffuse, GGX conductor, glass; emissive triangles, punctual lights");
+        "triangles; diffuse, GGX conductor, glass, glTF dielectric; emissive triangles, punctual lights");
   // The benchmark's scenes (bench/runs.txt), and the one with every feature.
   CHECK(scene_features(make_builtin_scene("cornell_glossy"), glm::vec3(0.0f)) == "triangles; diffuse, GGX conductor; emissive triangles");
   CHECK(scene_features(make_builtin_scene("cornell_glass"), glm::vec3(0.0f)) == "triangles, spheres; diffuse, glass; emissive triangles");
@@ -38,6 +38,18 @@ TEST_CASE("features: the CPU runs the smallest compiled variant that covers the 
   mixed.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, mixed.add_material(make_gltf_material({1, 1, 1}, 0.5f, 0.0f, 0.0f, 1.5f, {}, false)));
   CHECK(scene_feature_mask(mixed, glm::vec3(0.0f)) ==
         (kFeatureTriangles | kFeatureMixed | kFeatureDiffuse | kFeatureMirror));
+  // A glTF file's material brings its dielectric (with the Lambert base), and the
+  // conductor's lobe only where metallic is above 0.
+  Scene plastic;
+  GltfPbr pbr;
+  pbr.metallic = 0.0f, pbr.roughness = 0.5f;
+  plastic.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, plastic.add_material(make_gltf_pbr_material(pbr)));
+  CHECK(scene_feature_mask(plastic, glm::vec3(0.0f)) == (kFeatureTriangles | kFeatureDielectric | kFeatureDiffuse));
+  pbr.metallic = 0.5f, pbr.roughness = 0.0f;
+  plastic.materials[0] = make_gltf_pbr_material(pbr);
+  CHECK(scene_feature_mask(plastic, glm::vec3(0.0f)) ==
+        (kFeatureTriangles | kFeatureDielectric | kFeatureDiffuse | kFeatureMirror));
+  CHECK(cpu_variant_index(kFeatureDielectric, 16) == 4u);  // the GGX group's variant
   // For every feature set: the variant chosen covers it, and no smaller variant does.
   for (unsigned count : {1u, 2u, 8u, 16u}) {
     for (uint features = 0u; features <= kFeatureAll; features++) {

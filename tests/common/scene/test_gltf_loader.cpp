@@ -133,7 +133,7 @@ TEST_CASE("a binary .glb with an embedded image loads its geometry and camera", 
   CHECK(scene.camera->yfov == Approx(0.8f));
   check_point(scene.camera->to_world[3], {0, 0, 5});
   const pt::Material& m = scene.materials.at(scene.triangles[0].material);
-  CHECK(m.kind == pt::kMaterialDiffuse);  // the factors in the material, the texture beside it
+  CHECK(m.kind == pt::kMaterialDielectric);  // the factors in the material, the texture beside it
   check_point(m.base_color, {1, 1, 1});
   REQUIRE(scene.textures.size() == 1);  // decoded by OpenImageIO (test_gltf_textures.cpp)
   CHECK(scene.material_textures.at(scene.triangles[0].material).base_color == 0u);
@@ -151,7 +151,7 @@ TEST_CASE(
   REQUIRE(scene.triangles.size() == 1);  // the line primitive is not drawn
   check_triangle(scene.triangles[0], {10, 0, 0}, {12, 0, 0}, {10, 2, 0});
   const pt::Material& m = scene.materials.at(scene.triangles[0].material);
-  CHECK(m.kind == pt::kMaterialDiffuse);
+  CHECK(m.kind == pt::kMaterialDielectric);  // metallic 0: glTF's specular layer over a base
   for (const char* word :
        {"normal textures", "animations", "skins", "morph targets", "mode LINES", "EXT_made_up_extension"}) {
     CHECK(pt_test::occurrences(err, word) == 1);

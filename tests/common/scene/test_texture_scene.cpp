@@ -17,23 +17,31 @@ using pt_test::rgba;
 TEST_CASE("textures: the feature set has textures, and every kind a metallic-roughness texture reaches",
           "[texture][features]") {
   Scene scene = load("tex_basic.gltf");
-  // metallic 0.75 x B (255): mixed; roughness 0.5 x G (128): GGX. The diffuse lobe is mixed's.
+  // metallic 0.75 x B (255): glTF's dielectric mixed with the metal; roughness 0.5 x G
+  // (128): GGX. The diffuse lobe is the dielectric's base.
   uint mask = scene_feature_mask(scene, glm::vec3(0.0f));
   CHECK((mask & kFeatureTextures) != 0u);
-  CHECK((mask & kFeatureMixed) != 0u);
+  CHECK((mask & kFeatureDielectric) != 0u);
+  CHECK((mask & kFeatureMixed) == 0u);
   CHECK((mask & kFeatureDiffuse) != 0u);
   CHECK((mask & kFeatureConductor) != 0u);
   CHECK((mask & kFeatureMirror) == 0u);
   CHECK(feature_names(mask).find("textures") != std::string::npos);
   // Texels whose blue runs from 0 to 255 and green from 0: with metallic and roughness
-  // factors 1, every kind: diffuse (B 0), mixed, mirror (G 0) and GGX.
+  // factors 1, every lobe: the dielectric's (B 0), mirror (G 0) and GGX.
   scene.textures[2].texel_min = rgba(0, 0, 0, 255);
   scene.textures[2].texel_max = rgba(0, 255, 255, 255);
   scene.material_textures[0].metallic_factor = 1.0f;
   scene.material_textures[0].roughness_factor = 1.0f;
   mask = scene_feature_mask(scene, glm::vec3(0.0f));
-  const uint lobes = kFeatureDiffuse | kFeatureMirror | kFeatureConductor | kFeatureMixed;
+  const uint lobes = kFeatureDiffuse | kFeatureMirror | kFeatureConductor | kFeatureDielectric;
   CHECK((mask & lobes) == lobes);
+  // A material without a specular layer keeps the built-in rule: mixed between 0 and 1.
+  scene.materials[0] =
+      make_gltf_material(scene.materials[0].base_color, 0.5f, 0.5f, 0.0f, 1.5f, glm::vec3(0.0f), false);
+  mask = scene_feature_mask(scene, glm::vec3(0.0f));
+  const uint mixed_lobes = kFeatureDiffuse | kFeatureMirror | kFeatureConductor | kFeatureMixed;
+  CHECK((mask & mixed_lobes) == mixed_lobes);
   // Without textures: no texture code, and the factors' kinds alone.
   Scene plain = load("materials.gltf");
   CHECK((scene_feature_mask(plain, glm::vec3(0.0f)) & kFeatureTextures) == 0u);

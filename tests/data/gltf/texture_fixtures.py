@@ -8,6 +8,10 @@ import struct
 from gltf_builder import FLOAT, QUAD, Gltf
 
 
+# A Lambertian glTF material: metallic 0 and no specular layer (KHR_materials_specular's
+# specularFactor 0), for the image tests whose closed forms are Lambert's.
+LAMBERT = {"KHR_materials_specular": {"specularFactor": 0}}
+
 def png(width, height, rows, color_type=6, depth=8):
     """A PNG from rows of raw samples (bytes, filter 0 prepended here): colour type 6 RGBA,
     2 RGB, 0 grey, 4 grey + alpha; depth 8 or 16 (big-endian samples), 1 for grey."""
@@ -172,8 +176,10 @@ def textures():
     g.doc["images"] = [{"uri": data_uri(png(4, 4, rows))}]
     g.doc["samplers"] = [{"magFilter": 9728}]
     g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    # Lambertian: no specular layer (KHR_materials_specular's factor 0), the glTF material's base alone
     g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 1, 1], "baseColorTexture": {"index": 0},
-                                                    "metallicFactor": 0}}]
+                                                    "metallicFactor": 0}, "extensions": LAMBERT}]
+    g.doc["extensionsUsed"] = ["KHR_materials_specular"]
     g.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}]
     g.node(translation=[0, 0, 1], camera=0)
     plane = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
@@ -190,10 +196,12 @@ def textures():
     g.doc["textures"] = [{"source": 0, "sampler": 0}]
     g.doc["materials"] = [
         {"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 1, 1], "baseColorTexture": {"index": 0},
-                                  "metallicFactor": 0}, "alphaMode": "MASK"},
+                                  "metallicFactor": 0}, "alphaMode": "MASK", "extensions": LAMBERT},
         {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 0.2], "metallicFactor": 0},
-         "alphaMode": "MASK", "alphaCutoff": 0.25},
-        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 0.2], "metallicFactor": 0}, "alphaMode": "BLEND"}]
+         "alphaMode": "MASK", "alphaCutoff": 0.25, "extensions": LAMBERT},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 0.2], "metallicFactor": 0}, "alphaMode": "BLEND",
+         "extensions": LAMBERT}]
+    g.doc["extensionsUsed"] = ["KHR_materials_specular"]
     g.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}]
     g.node(translation=[0, 0, 1], camera=0)
     g.node(mesh=textured_quad(g, uv=((0, 2), (2, 2), (2, 0), (0, 0)), points=plane))
