@@ -375,7 +375,7 @@ std::string fake_machine(const std::string& name, std::uint64_t limit, std::uint
 
 TEST_CASE("cli: a render that cannot fit under ulimit -v (RLIMIT_AS) is refused before it renders, never at the "
           "write as a permissions problem",
-          "[reliability][bounds][memory]") {
+          "[reliability][bounds][memory][real_memory]") {
   // The issue's case: 2048 x 2048 under 432 MB of address space rendered, then failed to
   // write with "std::bad_alloc ... fix the folder's permissions".
   const std::string out = path("as_limited.exr");
@@ -419,7 +419,7 @@ TEST_CASE("cli: a Slurm job's cgroup memory limit (v2 memory.max, v1 memory.limi
 }
 
 TEST_CASE("cli: a device that cannot hold the image is refused before the film is allocated",
-          "[reliability][devices][memory]") {
+          "[reliability][devices][memory][real_memory]") {
   if (!have_vulkan_device()) SUCCEED("no Vulkan device here: nothing to test");
   if (!have_vulkan_device()) return;
   // 4096 x 4096: a 268 MB output buffer against small_limits' 64 KiB, and a film of 537 MB
@@ -434,7 +434,8 @@ TEST_CASE("cli: a device that cannot hold the image is refused before the film i
   CHECK(!fs::exists(path("device.exr")));
 }
 
-TEST_CASE("cli: --backend gpu at 16384 x 16384 is refused before it allocates or renders", "[reliability][memory]") {
+TEST_CASE("cli: --backend gpu at 16384 x 16384 is refused before it allocates or renders",
+          "[reliability][memory][real_memory]") {
   if (!have_vulkan_device()) SUCCEED("no Vulkan device here: nothing to test");
   if (!have_vulkan_device()) return;
   // Reported: 84 s and 12.7 GB before the device's refusal. Now the host's memory (exit 2)

@@ -117,7 +117,7 @@ TEST_CASE("memory probe: a container's cgroup is found where /proc/self/mountinf
 }
 
 TEST_CASE("memory probe: RLIMIT_AS less the address space in use (statm) binds, and is named",
-          "[memory][reliability]") {
+          "[memory][reliability][real_memory]") {
   FakeRoot root("rlimit");
   root.file("/proc/meminfo", meminfo(20000000));
   root.file("/proc/self/statm", "25000 3000 1000 10 0 20000 0\n");
@@ -258,7 +258,7 @@ TEST_CASE("memory step: the innermost step names what was being allocated, also 
 
 TEST_CASE("memory: an .exr that runs out of memory while it is encoded says out of memory, exit 2, never a "
           "folder's permissions",
-          "[memory][reliability]") {
+          "[memory][reliability][real_memory]") {
   const fs::path dir = pt_test::scratch_dir("pt_memory");
   const std::string out = (dir / "oom.exr").string();
   fs::remove(out);
