@@ -56,10 +56,6 @@ void refuse_shared_outputs(const Options& options) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 // The render as its memory sees it (common/render/memory.h); gpu: the backend that renders it.
 FramePlan frame_plan(const Options& o, const Scene* scene, bool gpu) {
   return {o.render.width, o.render.height, o.resume, gpu, o.out, o.error_map, scene, o.render.accel == kAccelBvh,
