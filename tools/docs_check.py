@@ -3,7 +3,7 @@
 chapters beside the article's Eq. 1-5, so the docs cannot drift from what the program
 computes.
 
-Three things are checked in every Markdown file:
+Four things are checked in every Markdown file:
 
 1. Code excerpts. A line
        <!-- excerpt: PATH#NAME -->
@@ -18,6 +18,12 @@ Three things are checked in every Markdown file:
    docs_source.py).
 3. Images and relative links: every ![..](x), <img src="x"> and [..](x) that is not a URL
    must name a file or folder that exists.
+4. Quoted numbers. A number followed by  <!-- numbers: PATH KEY -->  is the value of KEY in
+   PATH: a picture's metadata (spp, seconds, mean.R), a CSV cell, a file's number (see
+   docs_numbers.py); --update writes the file's value into the docs.
+
+Besides, the reading path that docs/start_here.md lists must be at most 15,000 words
+(docs_path.py); --check and --update print its length.
 
   tools/docs_check.py --check    (the ctest entry docs_check) lists every drifted excerpt,
                                  wrong line and missing file, one per line; exit 1 if any
@@ -33,6 +39,8 @@ import sys
 # Finding code in the sources; docs_check.X names them for make_lab_handout.py and the tests.
 from docs_source import (block_end, dedent, definition_line, excerpt_text, find_symbol,  # noqa: F401
                          marked_region, read_lines)
+from docs_numbers import check_numbers  # noqa: E402
+from docs_path import check_reading_path  # noqa: E402
 
 FENCE = re.compile(r"^(```+|~~~+)")
 EXCERPT = re.compile(r"^<!-- excerpt: ([^#\s]+)#([A-Za-z_][\w:]*) -->\s*$")
@@ -167,10 +175,12 @@ def check_links(root, md, lines, problems):
 
 def run(root, update):
     problems = Problems()
+    number_files = {}  # the pictures and tables that quoted numbers come from, each read once
     for md in markdown_files(root):
         lines = read_lines(md)
         new = check_excerpts(root, md, lines, update, problems)
         new = check_line_refs(root, md, new, update, problems)
+        new = check_numbers(root, md, new, update, problems, number_files)
         check_links(root, md, new, problems)
         if update and new != lines:
             with open(md, "w", encoding="utf-8") as f:
@@ -191,6 +201,9 @@ def main():
         print(f"docs_check: {args.root} has no README.md: give the repository root with --root", file=sys.stderr)
         return 2
     problems = run(args.root, args.update)
+    path_report = check_reading_path(args.root, problems)  # docs/start_here.md's path, in words
+    if path_report:
+        print("docs_check: " + path_report)
     for w in problems.warnings:
         print("note: " + w)
     for e in problems.errors:
@@ -198,7 +211,7 @@ def main():
     if problems.errors:
         print(f"docs_check: {len(problems.errors)} problem(s)", file=sys.stderr)
         return 1
-    print("docs_check: excerpts, line references and links agree with the source")
+    print("docs_check: excerpts, line references, links and quoted numbers agree with the source")
     return 0
 
 
