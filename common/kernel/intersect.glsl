@@ -253,7 +253,7 @@ bool cut_out(uint tri, float b1, float b2) {
   TriangleAttributes a = triangle_attributes[tri];
   float alpha = mt.base_alpha * triangle_color(a, b1, b2).w;
   if (mt.base_color != kNoTexture) {
-    vec2 uv = transform_uv(vec3(mt.base_color_s), vec3(mt.base_color_t), triangle_uv(a, b1, b2));
+    vec2 uv = slot_uv(mt.tex_coord_sets, kSlotBaseColor, vec3(mt.base_color_s), vec3(mt.base_color_t), a, b1, b2);
     alpha *= texture_lookup(mt.base_color, uv, true).w;
   }
   return alpha < mt.alpha_cutoff;

@@ -224,9 +224,19 @@ struct Texture {
   uint texel_max;  // feature mask reads them: the material kinds a texture can reach)
 };
 
+// The texture slots of MaterialTextures, as bits of its tex_coord_sets: a set bit reads the
+// slot's texture through TEXCOORD_1, a clear one through TEXCOORD_0 (texture_lookup.glsl
+// slot_uv).
+const uint kSlotBaseColor = 0u;
+const uint kSlotEmissive = 1u;
+const uint kSlotMetallicRoughness = 2u;
+const uint kSlotSpecular = 3u;
+const uint kSlotSpecularColor = 4u;
+
 // The textures of one material, parallel to materials[] (empty when the scene has no
 // textures and no vertex colours). Each slot: a texture index (or kNoTexture) and its
-// KHR_texture_transform as the two rows of a 2x3 matrix: s = dot(row_s, (u, v, 1)).
+// KHR_texture_transform as the two rows of a 2x3 matrix: s = dot(row_s, (u, v, 1)), of
+// the texture coordinate set its bit of tex_coord_sets names.
 struct MaterialTextures {
   vec3 base_color_s;           // base colour texture (sRGB), row s of its uv transform
   uint base_color;             // textures[] index, or kNoTexture
@@ -243,21 +253,33 @@ struct MaterialTextures {
                                // backend binds for a scene without textures (nothing more is read)
   float base_alpha;            // baseColorFactor's alpha (alphaMode MASK)
   float alpha_cutoff;          // alphaMode MASK: alpha below this is a hole; 0: opaque
-  uint pad0;                   // unused
+  uint tex_coord_sets;         // bit kSlot*: that slot reads TEXCOORD_1 (clear: TEXCOORD_0)
   uint pad1;                   // unused
+  vec3 specular_s;             // KHR_materials_specular's specularTexture (linear: A scales
+  uint specular;               // specularFactor, Material.specular)
+  vec3 specular_t;
+  float pad2;                  // unused
+  vec3 specular_color_s;       // its specularColorTexture (sRGB: RGB scales specularColorFactor)
+  uint specular_color;
+  vec3 specular_color_t;
+  float pad3;                  // unused
+  vec3 specular_color_factor;  // specularColorFactor, which the texture scales before the
+  float pad4;                  // layer's F0 is clamped to 1 (texture.glsl with_specular)
 };
 
 // What a triangle carries besides its corners, parallel to triangles[] (empty when the
-// scene has no textures and no vertex colours): TEXCOORD_0 and COLOR_0 at its corners
-// (uv (0, 0) and colour 1 where the primitive has none).
+// scene has no textures and no vertex colours): TEXCOORD_0, TEXCOORD_1 and COLOR_0 at its
+// corners (uv (0, 0) and colour 1 where the primitive has none).
 struct TriangleAttributes {
   vec2 uv0;      // TEXCOORD_0 at p0
   vec2 uv1;      // at p1
   vec2 uv2;      // at p2
-  vec2 pad;      // unused
+  vec2 set1_uv0; // TEXCOORD_1 at p0
   vec4 color0;   // COLOR_0 at p0 (RGBA, linear)
   vec4 color1;
   vec4 color2;
+  vec2 set1_uv1; // TEXCOORD_1 at p1
+  vec2 set1_uv2; // at p2
 };
 
 // One node of the bounding volume hierarchy over the triangles (common/scene/bvh.h), in a
@@ -290,11 +312,16 @@ static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams,
 static_assert(offsetof(FrameParams, accel) == 136 && offsetof(FrameParams, sampler_kind) == 140);
 static_assert(offsetof(FrameParams, mis_diffuse) == 144 && offsetof(FrameParams, pilot) == 152);
 static_assert(sizeof(Texture) == 32);
-static_assert(sizeof(MaterialTextures) == 112 && offsetof(MaterialTextures, emissive_s) == 32);
-static_assert(offsetof(MaterialTextures, base_alpha) == 96);
+static_assert(sizeof(MaterialTextures) == 192 && offsetof(MaterialTextures, emissive_s) == 32);
+static_assert(offsetof(MaterialTextures, base_alpha) == 96 && offsetof(MaterialTextures, tex_coord_sets) == 104);
+static_assert(offsetof(MaterialTextures, specular_s) == 112 && offsetof(MaterialTextures, specular_t) == 128);
+static_assert(offsetof(MaterialTextures, specular_color_s) == 144 && offsetof(MaterialTextures, specular_color_t) == 160);
+static_assert(offsetof(MaterialTextures, specular_color_factor) == 176);
 static_assert(offsetof(MaterialTextures, metallic_roughness_s) == 64 && offsetof(MaterialTextures, enabled) == 92);
-static_assert(sizeof(TriangleAttributes) == 80 && offsetof(TriangleAttributes, uv2) == 16);
-static_assert(offsetof(TriangleAttributes, color0) == 32 && offsetof(TriangleAttributes, color2) == 64);
+static_assert(sizeof(TriangleAttributes) == 96 && offsetof(TriangleAttributes, uv2) == 16);
+static_assert(offsetof(TriangleAttributes, set1_uv0) == 24 && offsetof(TriangleAttributes, color0) == 32);
+static_assert(offsetof(TriangleAttributes, color2) == 64 && offsetof(TriangleAttributes, set1_uv1) == 80);
+static_assert(offsetof(TriangleAttributes, set1_uv2) == 88);
 static_assert(sizeof(BvhNode) == 32 && offsetof(BvhNode, hi) == 16 && offsetof(BvhNode, count) == 28);
 }  // namespace pt
 #endif

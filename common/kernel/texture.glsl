@@ -1,9 +1,11 @@
 // Textures and vertex colours (issue #19; the contract (README.md), "Materials"): glTF's
-// base colour, emissive and metallic-roughness textures, read through TEXCOORD_0 and
-// KHR_texture_transform with the sampler's wrap modes and bilinear (or nearest) filtering,
-// and COLOR_0, which multiplies the base colour. Beyond the article, whose materials are
+// base colour, emissive and metallic-roughness textures and KHR_materials_specular's two,
+// each read through its TEXCOORD_0 or TEXCOORD_1 and KHR_texture_transform with the
+// sampler's wrap modes and bilinear (or nearest) filtering, and COLOR_0, which multiplies
+// the base colour. Beyond the article, whose materials are
 // constant. Texels are 8-bit RGBA (texels[], the texture table textures[]), decoded at
-// lookup: sRGB to linear for base colour and emissive, linear for metallic-roughness.
+// lookup: sRGB to linear for base colour, emissive and specular colour, linear for
+// metallic-roughness and specular.
 // Every function here runs only in kernels whose scene has kFeatureTextures (has_feature):
 // without it surface_material() is materials[surface.material], as before.
 #ifndef PT_TEXTURE_GLSL
@@ -37,31 +39,55 @@ Material with_metallic_roughness(Material m, float metallic, float roughness) {
   return m;
 }
 
+// KHR_materials_specular's textures at a point of a glTF dielectric: specularTexture's A
+// (linear) scales the layer's weight (specularFactor), specularColorTexture's RGB (sRGB)
+// its colour (specularColorFactor), and F0 is made again as the loader makes it from the
+// ior and the colour (scene.cpp make_gltf_pbr_material): min(((ior - 1) / (ior + 1))^2 x
+// colour, 1) per channel.
+Material with_specular_textures(Material m, MaterialTextures mt, TriangleAttributes a, float b1, float b2) {
+  if (mt.specular != kNoTexture) {
+    vec2 uv = slot_uv(mt.tex_coord_sets, kSlotSpecular, vec3(mt.specular_s), vec3(mt.specular_t), a, b1, b2);
+    m.specular = m.specular * texture_lookup(mt.specular, uv, false).w;
+  }
+  if (mt.specular_color != kNoTexture) {
+    vec2 uv = slot_uv(mt.tex_coord_sets, kSlotSpecularColor, vec3(mt.specular_color_s), vec3(mt.specular_color_t),
+                      a, b1, b2);
+    vec4 c = texture_lookup(mt.specular_color, uv, true);
+    float r = (m.ior - 1.0f) / (m.ior + 1.0f);
+    m.specular_f0 = min(r * r * vec3(mt.specular_color_factor) * vec3(c.x, c.y, c.z), vec3(1.0f));
+  }
+  return m;
+}
+
 // Material `material` at the point (b1, b2) of triangle `tri`: base colour x base colour
 // texture x COLOR_0, emission x emissive texture, metallic = factor x B and roughness =
-// factor x G of the metallic-roughness texture.
+// factor x G of the metallic-roughness texture, and a glTF dielectric's specular textures;
+// each texture read through its slot's texture coordinate set (slot_uv).
 Material textured_material(uint material, uint tri, float b1, float b2) {
   Material m = materials[material];
   MaterialTextures mt = material_textures[material];
   if (mt.enabled == 0u) return m;  // a kernel with texture code, a scene without textures
   TriangleAttributes a = triangle_attributes[tri];
-  vec2 uv = triangle_uv(a, b1, b2);
   vec4 color = triangle_color(a, b1, b2);
   vec3 base = vec3(m.base_color);
   if (mt.base_color != kNoTexture) {
-    vec4 t = texture_lookup(mt.base_color, transform_uv(vec3(mt.base_color_s), vec3(mt.base_color_t), uv), true);
+    vec2 uv = slot_uv(mt.tex_coord_sets, kSlotBaseColor, vec3(mt.base_color_s), vec3(mt.base_color_t), a, b1, b2);
+    vec4 t = texture_lookup(mt.base_color, uv, true);
     base = base * vec3(t.x, t.y, t.z);
   }
   m.base_color = base * vec3(color.x, color.y, color.z);
   if (mt.emissive != kNoTexture) {
-    vec4 e = texture_lookup(mt.emissive, transform_uv(vec3(mt.emissive_s), vec3(mt.emissive_t), uv), true);
+    vec2 uv = slot_uv(mt.tex_coord_sets, kSlotEmissive, vec3(mt.emissive_s), vec3(mt.emissive_t), a, b1, b2);
+    vec4 e = texture_lookup(mt.emissive, uv, true);
     m.emission = vec3(m.emission) * vec3(e.x, e.y, e.z);
   }
   if (mt.metallic_roughness != kNoTexture && m.kind != kMaterialGlass) {
-    vec4 r = texture_lookup(mt.metallic_roughness,
-                            transform_uv(vec3(mt.metallic_roughness_s), vec3(mt.metallic_roughness_t), uv), false);
+    vec2 uv = slot_uv(mt.tex_coord_sets, kSlotMetallicRoughness, vec3(mt.metallic_roughness_s),
+                      vec3(mt.metallic_roughness_t), a, b1, b2);
+    vec4 r = texture_lookup(mt.metallic_roughness, uv, false);
     m = with_metallic_roughness(m, mt.metallic_factor * r.z, mt.roughness_factor * r.y);
   }
+  if (has_feature(kFeatureDielectric) && m.kind == kMaterialDielectric) m = with_specular_textures(m, mt, a, b1, b2);
   return m;
 }
 
@@ -84,8 +110,9 @@ vec3 triangle_emission(uint tri, float b1, float b2) {
   uint tex = material_textures[material].emissive;
   if (tex == kNoTexture) return vec3(materials[material].emission);
   MaterialTextures mt = material_textures[material];
-  vec2 uv = triangle_uv(triangle_attributes[tri], b1, b2);
-  vec4 e = texture_lookup(tex, transform_uv(vec3(mt.emissive_s), vec3(mt.emissive_t), uv), true);
+  vec2 uv = slot_uv(mt.tex_coord_sets, kSlotEmissive, vec3(mt.emissive_s), vec3(mt.emissive_t),
+                    triangle_attributes[tri], b1, b2);
+  vec4 e = texture_lookup(tex, uv, true);
   return vec3(materials[material].emission) * vec3(e.x, e.y, e.z);
 }
 

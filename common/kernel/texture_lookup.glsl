@@ -1,8 +1,8 @@
 // Texture lookup (issue #19; the contract (README.md), "Materials"): a texel of the
 // texture table (textures[], texels[]) at a texture coordinate, with the sampler's wrap
-// modes and bilinear (or nearest) filtering, sRGB decoded; KHR_texture_transform; and a
-// triangle's TEXCOORD_0 and COLOR_0 at a point. Beyond the article, whose materials are
-// constant. texture.glsl builds the textured material from these, and intersect.glsl's
+// modes and bilinear (or nearest) filtering, sRGB decoded; KHR_texture_transform; a
+// triangle's TEXCOORD_0, TEXCOORD_1 and COLOR_0 at a point, and a texture slot's uv there.
+// Beyond the article, whose materials are constant. texture.glsl builds the textured material from these, and intersect.glsl's
 // alpha mask (alphaMode MASK) reads the base colour's alpha with them; this file needs
 // nothing of either, so both can include it.
 #ifndef PT_TEXTURE_LOOKUP_GLSL
@@ -90,11 +90,24 @@ vec2 transform_uv(vec3 row_s, vec3 row_t, vec2 uv) {
   return vec2(row_s.x * uv.x + row_s.y * uv.y + row_s.z, row_t.x * uv.x + row_t.y * uv.y + row_t.z);
 }
 
-// TEXCOORD_0 and COLOR_0 of a triangle at the point of barycentric weights b1 (p1), b2
-// (p2), written so that equal corners give their value exactly.
+// TEXCOORD_0, TEXCOORD_1 and COLOR_0 of a triangle at the point of barycentric weights b1
+// (p1), b2 (p2), written so that equal corners give their value exactly.
 vec2 triangle_uv(TriangleAttributes a, float b1, float b2) {
   vec2 uv0 = vec2(a.uv0);
   return uv0 + (vec2(a.uv1) - uv0) * b1 + (vec2(a.uv2) - uv0) * b2;
+}
+
+vec2 triangle_uv_set1(TriangleAttributes a, float b1, float b2) {
+  vec2 uv0 = vec2(a.set1_uv0);
+  return uv0 + (vec2(a.set1_uv1) - uv0) * b1 + (vec2(a.set1_uv2) - uv0) * b2;
+}
+
+// Where texture slot `slot` (kSlot*) of a material reads its texture at the point (b1, b2):
+// the slot's texture coordinate set there (bit `slot` of tex_coord_sets: TEXCOORD_1, else
+// TEXCOORD_0) through its KHR_texture_transform rows. Every texture lookup goes through it.
+vec2 slot_uv(uint tex_coord_sets, uint slot, vec3 row_s, vec3 row_t, TriangleAttributes a, float b1, float b2) {
+  vec2 uv = ((tex_coord_sets >> slot) & 1u) != 0u ? triangle_uv_set1(a, b1, b2) : triangle_uv(a, b1, b2);
+  return transform_uv(row_s, row_t, uv);
 }
 
 vec4 triangle_color(TriangleAttributes a, float b1, float b2) {

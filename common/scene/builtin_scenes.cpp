@@ -53,7 +53,8 @@ void add_textured_back_wall(Scene& s, bool holes) {
     const int* c = corners[t];
     s.triangles[4 + t].material = wall;
     s.triangle_attributes[4 + t] = TriangleAttributes{uv[c[0]], uv[c[1]], uv[c[2]], glm::vec2(0.0f),
-                                                      color[c[0]], color[c[1]], color[c[2]]};
+                                                      color[c[0]], color[c[1]], color[c[2]], glm::vec2(0.0f),
+                                                      glm::vec2(0.0f)};
   }
   mark_alpha_masked(s);
 }

@@ -163,21 +163,31 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
                     " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
   }
   uint material = material_index(prim.material);
-  // TEXCOORD_0 where the material has a texture, COLOR_0 where the primitive has one;
-  // the attributes too where the material has an alpha mask.
+  // TEXCOORD_0 and TEXCOORD_1 where a texture of the material reads them, COLOR_0 where the
+  // primitive has one; the attributes too where the material has an alpha mask.
   const MaterialTextures& mt = material_textures_[material];
-  const bool textured =
-      mt.base_color != kNoTexture || mt.emissive != kNoTexture || mt.metallic_roughness != kNoTexture;
-  const bool masked = mt.alpha_cutoff > 0.0f;
-  std::vector<glm::vec2> uv;
-  std::vector<glm::vec4> colors;
-  auto texcoord = prim.attributes.find("TEXCOORD_0"), color = prim.attributes.find("COLOR_0");
-  if (textured && texcoord != prim.attributes.end()) {
-    uv = gltf::read_texcoords(model_, texcoord->second, positions.size(), file_,
-                              "accessors[" + std::to_string(texcoord->second) + "] (TEXCOORD_0 of " + where + ")");
-  } else if (textured) {
-    warn_once(file_ + ": " + where + " has a textured material but no TEXCOORD_0; its textures are read at uv (0, 0)");
+  const uint slots[5] = {mt.base_color, mt.emissive, mt.metallic_roughness, mt.specular, mt.specular_color};
+  bool reads_set[2] = {false, false};
+  for (uint k = 0; k < 5; ++k) {
+    if (slots[k] != kNoTexture) reads_set[(mt.tex_coord_sets >> k) & 1u] = true;
   }
+  const bool textured = reads_set[0] || reads_set[1];
+  const bool masked = mt.alpha_cutoff > 0.0f;
+  std::vector<glm::vec2> uv[2];
+  std::vector<glm::vec4> colors;
+  for (int set = 0; set < 2; ++set) {
+    if (!reads_set[set]) continue;
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    auto texcoord = prim.attributes.find(name);
+    if (texcoord != prim.attributes.end()) {
+      uv[set] = gltf::read_texcoords(model_, texcoord->second, positions.size(), file_,
+                                     "accessors[" + std::to_string(texcoord->second) + "] (" + name + " of " + where + ")");
+    } else {
+      warn_once(file_ + ": " + where + " has a texture on " + name + " but no " + name +
+                "; its textures there are read at uv (0, 0)");
+    }
+  }
+  auto color = prim.attributes.find("COLOR_0");
   if (color != prim.attributes.end()) {
     colors = gltf::read_colors(model_, color->second, positions.size(), file_,
                                "accessors[" + std::to_string(color->second) + "] (COLOR_0 of " + where + ")");
@@ -188,12 +198,12 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
     attributes_on_ = true;
   }
   indices = gltf::triangulate(prim.mode, indices);
-  for (const glm::dmat4& world : worlds) add_triangles(indices, positions, world, material, uv, colors);
+  for (const glm::dmat4& world : worlds) add_triangles(indices, positions, world, material, uv[0], uv[1], colors);
 }
 
 void SceneBuilder::add_triangles(const std::vector<std::uint32_t>& indices, const std::vector<glm::vec3>& positions,
                                  const glm::dmat4& world, uint material, const std::vector<glm::vec2>& uv,
-                                 const std::vector<glm::vec4>& colors) {
+                                 const std::vector<glm::vec2>& uv_set1, const std::vector<glm::vec4>& colors) {
   for (std::size_t t = 0; t < indices.size(); t += 3) {
     glm::vec3 p[3];
     for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::dvec4(positions[indices[t + k]], 1.0));
@@ -207,6 +217,9 @@ void SceneBuilder::add_triangles(const std::vector<std::uint32_t>& indices, cons
     if (!attributes_on_) continue;
     TriangleAttributes a = no_triangle_attributes();
     if (!uv.empty()) a.uv0 = uv[indices[t]], a.uv1 = uv[indices[t + 1]], a.uv2 = uv[indices[t + 2]];
+    if (!uv_set1.empty()) {
+      a.set1_uv0 = uv_set1[indices[t]], a.set1_uv1 = uv_set1[indices[t + 1]], a.set1_uv2 = uv_set1[indices[t + 2]];
+    }
     if (!colors.empty()) {
       a.color0 = colors[indices[t]], a.color1 = colors[indices[t + 1]], a.color2 = colors[indices[t + 2]];
     }
@@ -221,7 +234,8 @@ uint SceneBuilder::material_index(int gltf_index) {
                    ? make_gltf_material(glm::vec3(1.0f), 1.0f, 1.0f, 0.0f, 1.5f, glm::vec3(0.0f), false)
                    : gltf::convert_material(model_, gltf_index, file_);
   // Its textures (noted now, decoded by take() if a drawn triangle uses them).
-  material_textures_.push_back(gltf_index == -1 ? no_material_textures() : textures_.material_textures(gltf_index));
+  material_textures_.push_back(gltf_index == -1 ? no_material_textures()
+                                                : textures_.material_textures(gltf_index, m.kind == kMaterialDielectric));
   return materials_[gltf_index] = scene_.add_material(m);
 }
 

@@ -45,9 +45,10 @@ std::string printable(const std::string& text) {
   return out + (text.size() > 40 ? "..." : "");
 }
 
-// KHR_materials_specular's specularColorFactor, or white: three numbers, each at least 0.
-glm::vec3 specular_color(const tinygltf::ExtensionMap& extensions, const std::string& where,
-                         const std::string& file) {
+}  // namespace
+
+glm::vec3 specular_color_factor(const tinygltf::ExtensionMap& extensions, const std::string& where,
+                                const std::string& file) {
   auto it = extensions.find("KHR_materials_specular");
   if (it == extensions.end() || !it->second.Has("specularColorFactor")) return glm::vec3(1.0f);
   const tinygltf::Value& value = it->second.Get("specularColorFactor");
@@ -61,16 +62,6 @@ glm::vec3 specular_color(const tinygltf::ExtensionMap& extensions, const std::st
   }
   return color;
 }
-
-// The textures of KHR_materials_specular are not read: say so once.
-void warn_specular_textures(const tinygltf::ExtensionMap& extensions, const std::string& file) {
-  auto it = extensions.find("KHR_materials_specular");
-  if (it == extensions.end()) return;
-  if (it->second.Has("specularTexture") || it->second.Has("specularColorTexture"))
-    warn_once(file + ": scene uses KHR_materials_specular textures; they are not modelled (the factors are)");
-}
-
-}  // namespace
 
 Material convert_material(const tinygltf::Model& model, int index, const std::string& file) {
   const tinygltf::Material& m = model.materials[index];
@@ -109,13 +100,12 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
   // KHR_materials_specular: the dielectric layer's weight and F0 colour (Appendix B's
   // fresnel_mix as the extension extends it; make_gltf_pbr_material, scene.cpp).
   double specular = extension_number(m.extensions, "KHR_materials_specular", "specularFactor", 1.0, where, file);
-  warn_specular_textures(m.extensions, file);
   GltfPbr pbr_material;
   pbr_material.base = base, pbr_material.metallic = metallic, pbr_material.roughness = roughness;
   pbr_material.transmission = t, pbr_material.ior = eta;
   pbr_material.specular =
       checked_float(file, specular, where + ".extensions.KHR_materials_specular.specularFactor", 0.0, 1.0);
-  pbr_material.specular_color = specular_color(m.extensions, where, file);
+  pbr_material.specular_color = specular_color_factor(m.extensions, where, file);
   pbr_material.emission = emission, pbr_material.double_sided = m.doubleSided;
   pbr_material.textured_metallic_roughness = pbr.metallicRoughnessTexture.index >= 0;
   return make_gltf_pbr_material(pbr_material);

@@ -21,8 +21,11 @@ namespace {
 bool material_needs_attributes(const tinygltf::Model& model, int index) {
   if (index < 0) return false;
   const tinygltf::Material& m = model.materials[std::size_t(index)];
+  auto specular = m.extensions.find("KHR_materials_specular");
+  bool specular_textures = specular != m.extensions.end() && (specular->second.Has("specularTexture") ||
+                                                              specular->second.Has("specularColorTexture"));
   return m.pbrMetallicRoughness.baseColorTexture.index >= 0 || m.emissiveTexture.index >= 0 ||
-         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.alphaMode == "MASK";
+         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.alphaMode == "MASK" || specular_textures;
 }
 
 std::string scene_label(const tinygltf::Model& model, std::size_t s) {

@@ -93,10 +93,11 @@ class SceneBuilder {
   void add_mesh(int mesh_index, const std::vector<glm::dmat4>& worlds);
   void add_primitive(const tinygltf::Primitive& prim, int position_accessor, const std::string& where,
                      const std::vector<glm::dmat4>& worlds);
-  // A primitive's triangles (indices three a triangle) placed by `world`; those without area skipped.
+  // A primitive's triangles (indices three a triangle) placed by `world`, with TEXCOORD_0
+  // (uv), TEXCOORD_1 (uv_set1) and COLOR_0 where not empty; those without area skipped.
   void add_triangles(const std::vector<std::uint32_t>& indices, const std::vector<glm::vec3>& positions,
                      const glm::dmat4& world, uint material, const std::vector<glm::vec2>& uv,
-                     const std::vector<glm::vec4>& colors);
+                     const std::vector<glm::vec2>& uv_set1, const std::vector<glm::vec4>& colors);
 
   // Each glTF material used is added once; -1 is glTF's default material.
   uint material_index(int gltf_index);

@@ -11,6 +11,7 @@
 
 #include "common/base/error.h"
 #include "common/scene/gltf_images.h"
+#include "common/scene/gltf_materials.h"
 #include "common/scene/gltf_validate.h"
 #include "common/scene/gltf_validate_detail.h"
 
@@ -84,10 +85,30 @@ double transform_number(const tinygltf::Value& ext, const char* key, int element
   return checked_float(file, v.GetNumberAsDouble(), w);
 }
 
+// A texture of an extension (KHR_materials_specular's) as glTF's textureInfo: its index,
+// texCoord and KHR_texture_transform; index -1 where the extension has no such texture.
+tinygltf::TextureInfo extension_texture(const tinygltf::ExtensionMap& extensions, const char* extension,
+                                        const char* key, const std::string& where, const std::string& file) {
+  tinygltf::TextureInfo info;
+  auto ext = extensions.find(extension);
+  if (ext == extensions.end() || !ext->second.Has(key)) return info;
+  const tinygltf::Value& v = ext->second.Get(key);
+  if (!v.IsObject() || !v.Has("index") || !v.Get("index").IsInt())
+    fail(file, where + " has no integer index: " + std::string(kReexport));
+  info.index = v.Get("index").GetNumberAsInt();
+  if (v.Has("texCoord")) {
+    if (!v.Get("texCoord").IsInt()) fail(file, where + ".texCoord is not an integer: " + std::string(kReexport));
+    info.texCoord = v.Get("texCoord").GetNumberAsInt();
+  }
+  if (v.Has("extensions") && v.Get("extensions").Has("KHR_texture_transform"))
+    info.extensions["KHR_texture_transform"] = v.Get("extensions").Get("KHR_texture_transform");
+  return info;
+}
+
 }  // namespace
 
-uint TextureBuilder::texture_slot(const tinygltf::TextureInfo& info, const std::string& where, glm::vec3& row_s,
-                                  glm::vec3& row_t) {
+uint TextureBuilder::texture_slot(const tinygltf::TextureInfo& info, const std::string& where, uint slot,
+                                  MaterialTextures& mt, glm::vec3& row_s, glm::vec3& row_t) {
   if (info.index < 0) return kNoTexture;
   check_index(file_, info.index, model_.textures.size(), where + ".index", "textures");
   // KHR_texture_transform: (s, t) = T(offset) R(rotation) S(scale) (u, v, 1), with the
@@ -106,9 +127,12 @@ uint TextureBuilder::texture_slot(const tinygltf::TextureInfo& info, const std::
   const double c = std::cos(rotation), s = std::sin(rotation);
   row_s = glm::vec3(float(c * sx), float(s * sy), float(ox));
   row_t = glm::vec3(float(-s * sx), float(c * sy), float(oy));
-  if (tex_coord != 0) {
+  // TEXCOORD_0 and TEXCOORD_1 are read (the slot's bit of tex_coord_sets: texture_lookup.glsl slot_uv).
+  if (tex_coord == 1) {
+    mt.tex_coord_sets |= 1u << slot;
+  } else if (tex_coord != 0) {
     warn_once(file_ + ": scene has textures read through TEXCOORD_" + std::to_string(tex_coord) +
-              "; only TEXCOORD_0 is modelled, so they are read through TEXCOORD_0");
+              "; only TEXCOORD_0 and TEXCOORD_1 are modelled, so they are read through TEXCOORD_0");
   }
   auto found = by_texture_.find(info.index);
   if (found != by_texture_.end()) return found->second;
@@ -142,17 +166,18 @@ uint TextureBuilder::texture_slot(const tinygltf::TextureInfo& info, const std::
   return by_texture_[info.index] = uint(table_.size() - 1);
 }
 
-MaterialTextures TextureBuilder::material_textures(int material) {
+MaterialTextures TextureBuilder::material_textures(int material, bool specular_layer) {
   const tinygltf::Material& m = model_.materials[material];
   const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
   std::string where = "materials[" + std::to_string(material) + "]";
   MaterialTextures t = no_material_textures();
-  t.base_color = texture_slot(pbr.baseColorTexture, where + ".pbrMetallicRoughness.baseColorTexture", t.base_color_s,
-                              t.base_color_t);
-  t.emissive = texture_slot(m.emissiveTexture, where + ".emissiveTexture", t.emissive_s, t.emissive_t);
+  t.base_color = texture_slot(pbr.baseColorTexture, where + ".pbrMetallicRoughness.baseColorTexture",
+                              kSlotBaseColor, t, t.base_color_s, t.base_color_t);
+  t.emissive = texture_slot(m.emissiveTexture, where + ".emissiveTexture", kSlotEmissive, t, t.emissive_s,
+                            t.emissive_t);
   t.metallic_roughness = texture_slot(pbr.metallicRoughnessTexture,
                                       where + ".pbrMetallicRoughness.metallicRoughnessTexture",
-                                      t.metallic_roughness_s, t.metallic_roughness_t);
+                                      kSlotMetallicRoughness, t, t.metallic_roughness_s, t.metallic_roughness_t);
   // The factors, checked by convert_material (gltf_materials.cpp) already.
   t.metallic_factor = float(pbr.metallicFactor);
   t.roughness_factor = float(pbr.roughnessFactor);
@@ -168,6 +193,18 @@ MaterialTextures TextureBuilder::material_textures(int material) {
   if (m.occlusionTexture.index >= 0) {
     warn_once(file_ + ": scene has occlusion textures; they are not used (the path tracer finds occlusion itself)");
   }
+  // KHR_materials_specular's textures (the factors are the material's: gltf_materials.cpp),
+  // where the material has a specular layer for them to vary.
+  const std::string specular = where + ".extensions.KHR_materials_specular.";
+  if (!specular_layer) return t;
+  t.specular = texture_slot(
+      extension_texture(m.extensions, "KHR_materials_specular", "specularTexture", specular + "specularTexture", file_),
+      specular + "specularTexture", kSlotSpecular, t, t.specular_s, t.specular_t);
+  t.specular_color = texture_slot(extension_texture(m.extensions, "KHR_materials_specular", "specularColorTexture",
+                                                    specular + "specularColorTexture", file_),
+                                  specular + "specularColorTexture", kSlotSpecularColor, t, t.specular_color_s,
+                                  t.specular_color_t);
+  t.specular_color_factor = specular_color_factor(m.extensions, where, file_);
   return t;
 }
 

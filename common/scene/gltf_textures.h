@@ -1,6 +1,6 @@
 // glTF textures for the loader (gltf_loader.cpp; issue #19, the contract (README.md)
-// "Materials"): the base colour, emissive and metallic-roughness textures of the materials
-// a scene uses, with their samplers and KHR_texture_transform, and their images decoded by
+// "Materials"): the base colour, emissive, metallic-roughness and KHR_materials_specular
+// textures of the materials a scene uses, with their samplers and KHR_texture_transform, and their images decoded by
 // OpenImageIO (PNG or JPEG, from a bufferView, a data: URI or a file in the scene's
 // folder) into the 8-bit RGBA texels of Scene::texels. tinygltf decodes nothing: its image
 // loader only keeps the bytes (keep_image_bytes).
@@ -56,9 +56,12 @@ class TextureBuilder {
   TextureBuilder(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file) {}
 
   // The texture slots of model.materials[material] (texture table indices as they will be
-  // once decode_into() has run), its factors and its uv transforms; names once what stays
-  // unmodelled (normal and occlusion textures, texCoord other than 0).
-  MaterialTextures material_textures(int material);
+  // once decode_into() has run), its factors, uv transforms and texture coordinate sets
+  // (TEXCOORD_0 or TEXCOORD_1); names once what stays unmodelled (normal and occlusion
+  // textures, texCoord 2 and above, which are read through TEXCOORD_0).
+  // specular_layer: the material is a glTF dielectric (kMaterialDielectric), whose layer
+  // KHR_materials_specular's textures vary; other materials leave them unread.
+  MaterialTextures material_textures(int material, bool specular_layer);
 
   // Whether some material noted a texture.
   bool empty() const { return table_.empty(); }
@@ -68,7 +71,10 @@ class TextureBuilder {
   void decode_into(Scene& scene) const;
 
  private:
-  uint texture_slot(const tinygltf::TextureInfo& info, const std::string& where, glm::vec3& row_s, glm::vec3& row_t);
+  // The table index of a texture slot (kSlot*) and its uv transform's rows; TEXCOORD_1
+  // sets the slot's bit of mt.tex_coord_sets.
+  uint texture_slot(const tinygltf::TextureInfo& info, const std::string& where, uint slot, MaterialTextures& mt,
+                    glm::vec3& row_s, glm::vec3& row_t);
 
   const tinygltf::Model& model_;
   std::string file_;

@@ -137,7 +137,14 @@ bool uses_alpha_mask(const Scene& scene) {
 
 MaterialTextures no_material_textures() {
   const glm::vec3 s(1.0f, 0.0f, 0.0f), t(0.0f, 1.0f, 0.0f);  // the identity transform
-  return MaterialTextures{s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1.0f, s, kNoTexture, t, 1u, 1.0f, 0.0f, 0u, 0u};
+  MaterialTextures m{};  // every other field 0: no transform offsets, opaque, TEXCOORD_0
+  m.base_color_s = m.emissive_s = m.metallic_roughness_s = m.specular_s = m.specular_color_s = s;
+  m.base_color_t = m.emissive_t = m.metallic_roughness_t = m.specular_t = m.specular_color_t = t;
+  m.base_color = m.emissive = m.metallic_roughness = m.specular = m.specular_color = kNoTexture;
+  m.metallic_factor = m.roughness_factor = m.base_alpha = 1.0f;
+  m.specular_color_factor = glm::vec3(1.0f);
+  m.enabled = 1u;
+  return m;
 }
 
 std::vector<MaterialTextures> neutral_material_textures(std::size_t materials) {
@@ -149,7 +156,7 @@ std::vector<MaterialTextures> neutral_material_textures(std::size_t materials) {
 TriangleAttributes no_triangle_attributes() {
   const glm::vec2 uv(0.0f);
   const glm::vec4 white(1.0f);
-  return TriangleAttributes{uv, uv, uv, uv, white, white, white};
+  return TriangleAttributes{uv, uv, uv, uv, white, white, white, uv, uv};
 }
 
 glm::vec4 texel_value(const Scene& scene, const Texture& t, uint x, uint y) {

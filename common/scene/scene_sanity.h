@@ -49,7 +49,7 @@ inline constexpr double kMinRelativeExtent = 1.0 / 4096.0;
 // (40: box, centroid, index), the CPU backend's triangle copy (36) and wide BVH (36 + nodes),
 // rounded up to 192. Measured: peak RSS grows by 175-180 B per triangle (stage1, CPU backend,
 // 1-4 million triangles). Triangles with texture coordinates or vertex colours add their
-// TriangleAttributes (80).
+// TriangleAttributes (96).
 inline constexpr std::uint64_t kSceneBytesPerTriangle = 192;
 inline constexpr std::uint64_t kAttributeBytesPerTriangle = sizeof(TriangleAttributes);
 

@@ -1,9 +1,9 @@
 // Emissive textures and alpha masks in rendered images (issue #19; common/kernel/texture.glsl),
 // on the backend under test (pt_tests: the CPU, pt_gpu_tests: Vulkan): light sampling
 // weighs a point on an emitter by its emissive texture (a two-tone light over a floor,
-// Lambert's formula for each half), an emitter's holes emit nothing, and a masked plane's
-// holes show the sky behind it. Tolerances come from the images' own variance
-// (image_checks.h).
+// Lambert's formula for each half; read through TEXCOORD_0 or TEXCOORD_1), an emitter's
+// holes emit nothing, and a masked plane's holes show the sky behind it. Tolerances come
+// from the images' own variance (image_checks.h).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -33,7 +33,9 @@ using pt_test::rgba;
 // half Le x texel 1. Each half is a uniform polygon: Lambert's formula for each. With
 // `left_hole` the light has an alpha mask and texel 0 alpha 0: its x < 0 half is a hole,
 // which neither the BSDF's rays (stages 2, 3) nor the light samples (stages 4, 5) may find.
-void check_light_halves(bool left_hole, std::uint32_t seed) {
+// With `set1` the textures read TEXCOORD_1 (kSlot* bits), which holds that layout, while
+// TEXCOORD_0 holds it mirrored (u -> 1 - u, the halves swapped).
+void check_light_halves(bool left_hole, std::uint32_t seed, bool set1 = false) {
   analytic::FloorLightScene a;
   Scene scene = analytic::make_floor_light(a);
   const uint t0 = rgba(255, 200, 100, left_hole ? 0 : 255), t1 = rgba(30, 60, 255, 255);
@@ -53,6 +55,14 @@ void check_light_halves(bool left_hole, std::uint32_t seed) {
   scene.triangle_attributes[n - 2].uv2 = {1, 1};
   scene.triangle_attributes[n - 1].uv0 = {0, 0}, scene.triangle_attributes[n - 1].uv1 = {1, 1};
   scene.triangle_attributes[n - 1].uv2 = {0, 1};
+  if (set1) {
+    for (std::size_t t : {n - 2, n - 1}) {
+      TriangleAttributes& a = scene.triangle_attributes[t];
+      a.set1_uv0 = a.uv0, a.set1_uv1 = a.uv1, a.set1_uv2 = a.uv2;
+      a.uv0.x = 1.0f - a.uv0.x, a.uv1.x = 1.0f - a.uv1.x, a.uv2.x = 1.0f - a.uv2.x;
+    }
+    scene.material_textures[light].tex_coord_sets = (1u << kSlotEmissive) | (1u << kSlotBaseColor);
+  }
   mark_alpha_masked(scene);
   build_light_table(scene);
   REQUIRE(uses_alpha_mask(scene) == left_hole);
@@ -96,6 +106,13 @@ TEST_CASE("textures: light sampling weighs a point on an emitter by its emissive
 TEST_CASE("alpha masks: an emitter's holes emit nothing, for light samples and BSDF rays alike, in stages 2 to 5",
           "[texture][alpha_mask][statistical]") {
   check_light_halves(true, test_seed(19700));
+}
+
+TEST_CASE("texCoord 1: light sampling weighs an emitter by its emissive texture and cuts its holes through "
+          "TEXCOORD_1, in stages 2 to 5",
+          "[texture][texcoord][alpha_mask][statistical]") {
+  check_light_halves(false, test_seed(47300), true);
+  check_light_halves(true, test_seed(47400), true);
 }
 
 TEST_CASE("alpha masks: a masked plane's holes show the sky behind, a fully masked occluder is not there, in every stage",

@@ -100,6 +100,20 @@ class GltfWriter {
     return node(std::move(fields));
   }
 
+  // For tests that need more than the helpers above (tests/support/gltf_textured.h): an
+  // item appended to a top-level array, and bytes appended to the buffer as a bufferView
+  // (4-byte aligned on both ends, so that accessors after it stay aligned); their indices.
+  int item(const char* array, Json fields) { return add(array, std::move(fields)); }
+  int view(const void* bytes, std::size_t size) {
+    bin_.resize((bin_.size() + 3) / 4 * 4);
+    std::size_t offset = bin_.size();
+    bin_.resize(offset + size);
+    std::memcpy(bin_.data() + offset, bytes, size);
+    int index = add("bufferViews", {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", size}});
+    bin_.resize((bin_.size() + 3) / 4 * 4);
+    return index;
+  }
+
   // Writes the document to `path` (its folder is made) and returns the path.
   std::string write(const std::string& path) {
     Json doc = doc_;

@@ -98,15 +98,19 @@ TEST_CASE("textures: the texture table, texels, slots, uv transforms, TEXCOORD_0
   CHECK(err.find("KHR_texture_transform") == std::string::npos);  // a supported extension
 }
 
-TEST_CASE("textures: an image file next to the scene is read; texCoord 1 is named once and read as TEXCOORD_0",
-          "[texture][loader]") {
+TEST_CASE("textures: an image file next to the scene is read; texCoord 1 without TEXCOORD_1 is named once and "
+          "read at uv (0, 0)",
+          "[texture][loader][texcoord]") {
   pt_test::StderrCapture capture;
   Scene scene = load("tex_external.gltf");
   std::string err = capture.text();
   INFO("stderr: " << err);
   REQUIRE(scene.textures.size() == 1);
   CHECK(scene.texels.at(scene.textures[0].offset) == rgba(10, 20, 30, 40));
-  CHECK(pt_test::occurrences(err, "TEXCOORD_1") == 1);
+  CHECK(scene.material_textures.at(0).tex_coord_sets == 1u << kSlotBaseColor);
+  CHECK(scene.triangle_attributes.at(0).set1_uv1 == glm::vec2(0.0f));
+  CHECK(pt_test::occurrences(err, "has a texture on TEXCOORD_1 but no TEXCOORD_1; its textures there are read at uv (0, 0)") == 1);
+  CHECK(pt_test::occurrences(err, "TEXCOORD_0") == 0);  // no texture reads it
 }
 
 TEST_CASE("textures: KHR_texture_transform's example maps uv onto the image's lower-left quadrant, turned",

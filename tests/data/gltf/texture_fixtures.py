@@ -84,7 +84,7 @@ def textures():
                            "emissiveTexture": {"index": 1}, "emissiveFactor": [1, 1, 1]}]
     g.node(mesh=textured_quad(g))
     g.write_gltf("tex_channels.gltf")
-    # an image in a file next to the scene; TEXCOORD_1 asked for (warned, TEXCOORD_0 read)
+    # an image in a file next to the scene; TEXCOORD_1 asked for (the quad has none: warned, read at (0, 0))
     with open(os.path.join(HERE, "tex_external.png"), "wb") as f:
         f.write(png(1, 1, [[10, 20, 30, 40]]))
     # a Git LFS pointer in place of the image file (a clone without `git lfs pull`)
