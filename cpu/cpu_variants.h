@@ -19,7 +19,7 @@ constexpr uint kCpuFeatureGroups[] = {
     kFeatureSpheres | kFeatureSphereLights,  // bit 0: spheres
     kFeatureMirror | kFeatureGlass,          // bit 1: delta lobes
     kFeatureConductor | kFeatureMixed | kFeatureTextures | kFeatureAlphaMask |
-        kFeatureDielectric,                  // bit 2: GGX, mixed, textures, glTF's dielectric
+        kFeatureDielectric | kFeatureRoughGlass,  // bit 2: GGX, mixed, textures, glTF's dielectric, rough glass
     kFeaturePointLights | kFeatureSky,       // bit 3: lights other than area lights
 };
 constexpr unsigned kCpuFeatureGroupCount = sizeof kCpuFeatureGroups / sizeof kCpuFeatureGroups[0];
