@@ -100,7 +100,9 @@ const uint kFeatureTextures = 1u << 11u;        // textures or vertex colours (t
 const uint kFeatureAlphaMask = 1u << 12u;       // alphaMode MASK: holes rays pass (intersect.glsl)
 const uint kFeatureDielectric = 1u << 13u;      // glTF's dielectric: specular layer over a base
 const uint kFeatureRoughGlass = 1u << 15u;      // rough dielectric transmission (kMaterialRoughGlass)
-const uint kFeatureAll = (1u << 16u) - 1u;
+// Bit 14 is kFeatureShadingNormals (branch `shading`, issue #46): once both are merged,
+// kFeatureAll = (1u << 16u) - 1u.
+const uint kFeatureAll = ((1u << 14u) - 1u) | kFeatureRoughGlass;
 
 // Textures (common/kernel/texture.glsl, issue #19): what a sampler does at the edges and
 // between texels (glTF's sampler wrapS / wrapT and magFilter), and "no texture".
