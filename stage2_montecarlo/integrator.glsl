@@ -39,8 +39,9 @@ vec3 Li(Ray ray) {
     } else {
       // Eq. (3) with N = 1: one direction uniform over the hemisphere, weighted
       // (2 pi / N) f cos, 2 pi = 1 / pdf (erratum 1: the article prints 1 / (2 pi N)).
-      wi = sample_uniform_hemisphere(sample_2d());
-      beta *= uniform_bounce_weight(eval_lobe(lobe, material, wo, wi), wi);
+      // Rough glass transmits too: uniform over the sphere, f |cos| 4 pi (bsdf.glsl).
+      wi = sample_uniform_bounce(lobe, sample_2d());
+      beta *= uniform_lobe_weight(lobe, eval_lobe(lobe, material, wo, wi), wi);
     }
 
     float survive = russian_roulette(beta, params.roulette);

@@ -38,8 +38,8 @@ vec3 Li(Ray ray) {
       beta *= bounce.weight;
     } else {
       // Eq. (4), corrected (erratum 2): draw wi with density pdf, weight f cos / pdf.
-      LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
-      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
+      LobeSample s = sample_lobe(lobe, material, wo, lobe_numbers(lobe));
+      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * lobe_cos(lobe, s.wi) / s.pdf;
       if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
       wi = s.wi;
       beta *= weight;

@@ -45,16 +45,17 @@ vec3 Li(Ray ray) {
     } else {
       // Eq. (5), corrected (erratum 5): direct light f Le V cos_x cos_y / d^2 / pdf_A,
       // with the geometry term and the pdf inside the light sample's weight.
-      LightSample ls = sample_light(surface.p, n);
+      // (Rough glass sees lights on both sides: light_sample_normal, lobe_cos.)
+      LightSample ls = sample_light(surface.p, light_sample_normal(lobe, n));
       vec3 wl = frame_to_local(frame, ls.wi);
       vec3 f = eval_lobe(lobe, material, wo, wl);
-      if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f &&
+      if (lobe_cos(lobe, wl) > 0.0f && max_component(f * ls.weight) > 0.0f &&
           !occluded(surface.p, surface.n, ls)) {
-        L += beta * f * ls.weight * wl.z;
+        L += beta * f * ls.weight * lobe_cos(lobe, wl);
       }
       // Indirect light: one BRDF-sampled direction, as in stage3 (Eq. 4).
-      LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
-      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
+      LobeSample s = sample_lobe(lobe, material, wo, lobe_numbers(lobe));
+      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * lobe_cos(lobe, s.wi) / s.pdf;
       if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
       wi = s.wi;
       beta *= weight;

@@ -87,12 +87,14 @@ vec3 Li(Ray ray) {
       // The light sample: direct light as in stage4, weighed against the BSDF sample that
       // could have found the same point (a point light is a delta: the light sample only).
       float scale = mis_light_scale(lobe);
-      LightSample ls = sample_light_by(surface.p, n, kTriangleBySolidAngle);
+      // (Rough glass sees lights on both sides: light_sample_normal, lobe_cos.)
+      vec3 light_n = light_sample_normal(lobe, n);
+      LightSample ls = sample_light_by(surface.p, light_n, kTriangleBySolidAngle);
       vec3 wl = frame_to_local(frame, ls.wi);
       vec3 f = eval_lobe(lobe, material, wo, wl);
       vec3 direct = vec3(0.0f);  // what the light sample alone finds (the pilot's X_l)
-      if (wl.z > 0.0f && max_component(f * ls.weight) > 0.0f && !occluded(surface.p, surface.n, ls)) {
-        direct = beta * f * ls.weight * wl.z;
+      if (lobe_cos(lobe, wl) > 0.0f && max_component(f * ls.weight) > 0.0f && !occluded(surface.p, surface.n, ls)) {
+        direct = beta * f * ls.weight * lobe_cos(lobe, wl);
         float w = ls.pdf > 0.0f ? power_heuristic(scale * ls.pdf, lobe_pdf(lobe, material, wo, wl)) : 1.0f;
         L += direct * w;
       }
@@ -100,14 +102,15 @@ vec3 Li(Ray ray) {
       pilot = mis_pilot_vertex(pilot, lobe, ls.pdf > 0.0f ? direct : vec3(0.0f));
       // The BSDF sample, as in stage3 (Eq. 4): it continues the path, and the emission it
       // finds at the next hit counts with its weight (above).
-      LobeSample s = sample_lobe(lobe, material, wo, sample_2d());
-      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * max(s.wi.z, 0.0f) / s.pdf;
+      LobeSample s = sample_lobe(lobe, material, wo, lobe_numbers(lobe));
+      vec3 weight = eval_lobe(lobe, material, wo, s.wi) * lobe_cos(lobe, s.wi) / s.pdf;
       if (ends_at_zero_pdf(s.pdf, weight)) break;  // never divide by a zero pdf
       wi = s.wi;
       beta *= weight;
+      eta_scale *= lobe_eta2(lobe, material, wi);
       specular = false;
       from_p = surface.p;
-      from_n = n;
+      from_n = light_n;
       bsdf_pdf = s.pdf;
       from_scale = scale;
     }

@@ -21,13 +21,13 @@ endfunction()
 
 # Erratum 1: Eq. (3)'s factor as printed, 1 / (2 pi N), instead of 2 pi / N (N = 1).
 pt_printed_formula(stage2_eq3 stage2_montecarlo
-  "beta *= uniform_bounce_weight(eval_lobe(lobe, material, wo, wi), wi);"
+  "beta *= uniform_lobe_weight(lobe, eval_lobe(lobe, material, wo, wi), wi);"
   "beta *= (1.0f / (2.0f * kPi)) * eval_lobe(lobe, material, wo, wi) * wi.z;")
 # Erratum 2: Eq. (4) as printed, the factor 1 / (2 pi) and no division by the pdf.
 pt_printed_formula(stage3_eq4 stage3_importance
-  "max(s.wi.z, 0.0f) / s.pdf;"
-  "max(s.wi.z, 0.0f) / (2.0f * kPi);")
+  "lobe_cos(lobe, s.wi) / s.pdf;"
+  "lobe_cos(lobe, s.wi) / (2.0f * kPi);")
 # Erratum 5: Eq. (5) as printed, f Le cos_x: no geometry term cos_y / d^2, no area pdf.
 pt_printed_formula(stage4_eq5 stage4_direct_indirect
-  "L += beta * f * ls.weight * wl.z;"
-  "L += beta * f * ls.weight * ls.pdf * wl.z;")
+  "L += beta * f * ls.weight * lobe_cos(lobe, wl);"
+  "L += beta * f * ls.weight * ls.pdf * lobe_cos(lobe, wl);")

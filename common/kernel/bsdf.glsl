@@ -1,8 +1,8 @@
 // The materials of the contract (README.md) as functions of local directions (z = the normal on the
 // side the light arrives from): Lambertian diffuse, Schlick-Fresnel conductors (a perfect
 // mirror, or GGX microfacets with Smith's height-correlated masking), smooth glass with
-// exact dielectric Fresnel; and glTF's dielectric, a GGX layer over a Lambert base
-// (gltf_dielectric.glsl). f is the BRDF of Eq. (1); delta lobes are sampled, not evaluated.
+// exact dielectric Fresnel; glTF's dielectric, a GGX layer over a Lambert base
+// (gltf_dielectric.glsl); and rough glass, GGX reflection and refraction (rough_dielectric.glsl). f is the BRDF of Eq. (1); delta lobes are sampled, not evaluated.
 #ifndef PT_BSDF_GLSL
 #define PT_BSDF_GLSL
 
@@ -135,6 +135,8 @@ struct DeltaBounce {
 
 // The glTF material's dielectric (a specular layer over a base), for glTF files.
 #include "common/kernel/gltf_dielectric.glsl"
+// The rough dielectric (KHR_materials_transmission with roughness), for glTF files.
+#include "common/kernel/rough_dielectric.glsl"
 
 // Which lobe a surface scatters by: a mixed material (0 < metallic < 1) is the conductor
 // with probability metallic, else the diffuse (the contract (README.md)); u is a uniform number.
@@ -151,9 +153,10 @@ uint choose_lobe(Material m, vec3 wo, float u) {
   return m.alpha >= kGgxMirrorAlpha ? kMaterialConductor : kMaterialMirror;
 }
 
-// f of a non-delta lobe (kMaterialDiffuse, kMaterialConductor, kMaterialDielectric or
-// kLobeSmoothBase).
+// f of a non-delta lobe (kMaterialDiffuse, kMaterialConductor, kMaterialDielectric,
+// kLobeSmoothBase or kMaterialRoughGlass, the one that also transmits: wi.z < 0).
 vec3 eval_lobe(uint lobe, Material m, vec3 wo, vec3 wi) {
+  if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return rough_glass_bsdf(m, wo, wi);
   if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_conductor_brdf(m.base_color, m.alpha, wo, wi);
   if (has_feature(kFeatureDielectric)) {
     if (lobe == kMaterialDielectric) return dielectric_brdf(m, wo, wi);
@@ -162,6 +165,8 @@ vec3 eval_lobe(uint lobe, Material m, vec3 wo, vec3 wi) {
   return lambert_brdf(m.base_color, wo, wi);
 }
 
+// A direction for a lobe that reflects only (the rough dielectric needs a third number:
+// the overload below).
 LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
   if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) {
     float alpha = m.alpha;
@@ -174,7 +179,59 @@ LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec2 u) {
   return LobeSample(wi, cosine_hemisphere_pdf(wi.z));
 }
 
+// A direction for any non-delta lobe from the numbers lobe_numbers(lobe) drew: the rough
+// dielectric reads all three, every other lobe the first two.
+LobeSample sample_lobe(uint lobe, Material m, vec3 wo, vec3 u) {
+  if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return sample_rough_glass(m, wo, u);
+  return sample_lobe(lobe, m, wo, vec2(u.x, u.y));
+}
+
+// The uniform numbers a lobe's sample_lobe reads: a 2-D sample, and for the rough
+// dielectric a third number after it (its choice between reflection and refraction), so
+// that a scene without one draws exactly the numbers it drew before.
+vec3 lobe_numbers(uint lobe) {
+  vec2 u = sample_2d();
+  float v = has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass ? sample_1d() : 0.0f;
+  return vec3(u.x, u.y, v);
+}
+
+// The |cos| of Eq. (1) that f multiplies for direction wi: the rough dielectric sees both
+// sides of its surface; every other lobe only the side the ray came from (clamped to 0).
+float lobe_cos(uint lobe, vec3 wi) {
+  if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return abs(wi.z);
+  return max(wi.z, 0.0f);
+}
+
+// The normal a light sample is drawn about (lights.glsl sample_sky, sky_light_pdf): n, or
+// for a lobe that transmits the zero vector, which asks for the whole sphere of the sky.
+vec3 light_sample_normal(uint lobe, vec3 n) {
+  if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return vec3(0.0f);
+  return n;
+}
+
+// What a non-delta bounce to wi changes the path's radiance scale by (stage5's eta_scale).
+float lobe_eta2(uint lobe, Material m, vec3 wi) {
+  if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return rough_glass_eta2(m, wi);
+  return 1.0f;
+}
+
+// Stage2's uniform direction for a lobe: the hemisphere (Eq. 3), or for a lobe that
+// transmits the whole sphere, density 1 / (4 pi); and the weight f |cos| / pdf it carries.
+vec3 sample_uniform_bounce(uint lobe, vec2 u) {
+  if (!has_feature(kFeatureRoughGlass) || lobe != kMaterialRoughGlass) return sample_uniform_hemisphere(u);
+  float z = 1.0f - 2.0f * u.x;
+  float r = sqrt(max(0.0f, 1.0f - z * z));
+  float phi = 2.0f * kPi * u.y;
+  return vec3(r * cos(phi), r * sin(phi), z);
+}
+
+vec3 uniform_lobe_weight(uint lobe, vec3 f, vec3 wi) {
+  if (!has_feature(kFeatureRoughGlass) || lobe != kMaterialRoughGlass) return uniform_bounce_weight(f, wi);
+  return f * (abs(wi.z) * 4.0f * kPi);
+}
+
 float lobe_pdf(uint lobe, Material m, vec3 wo, vec3 wi) {
+  if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return rough_glass_pdf(m, wo, wi);
   if (has_feature(kFeatureConductor) && lobe == kMaterialConductor) return ggx_vndf_pdf(wo, wi, m.alpha);
   if (has_feature(kFeatureDielectric) && lobe == kMaterialDielectric) return dielectric_pdf(m, wo, wi);
   return cosine_hemisphere_pdf(wi.z);

@@ -103,8 +103,18 @@ LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
   return LightSample(wi, dist, vec3(materials[s.material].emission) / pdf, pdf);
 }
 
-// The uniform sky: a cosine-weighted direction about the normal n, density cos / pi.
+// The uniform sky: a cosine-weighted direction about the normal n, density cos / pi; for
+// n = 0 (a lobe that transmits, bsdf.glsl light_sample_normal) uniform over the whole
+// sphere, density 1 / (4 pi).
 LightSample sample_sky(vec3 n, vec2 u, float pick) {
+  if (has_feature(kFeatureRoughGlass) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) {
+    float z = 1.0f - 2.0f * u.x;
+    float r = sqrt(max(0.0f, 1.0f - z * z));
+    float phi = 2.0f * kPi * u.y;
+    float sphere_pdf = pick / (4.0f * kPi);
+    if (!(sphere_pdf > 0.0f)) return no_light();
+    return LightSample(vec3(r * cos(phi), r * sin(phi), z), kInfinity, vec3(params.sky) / sphere_pdf, sphere_pdf);
+  }
   vec3 local = sample_cosine_hemisphere(u);
   float pdf = cosine_hemisphere_pdf(local.z) * pick;
   if (!(pdf > 0.0f)) return no_light();
@@ -243,6 +253,9 @@ float light_pdf(vec3 p, vec3 wi, Hit hit, float dist) {
 // The pdf with which sample_light picks the sky in direction wi from a point whose normal
 // (on the side light comes from) is n.
 float sky_light_pdf(vec3 n, vec3 wi) {
+  if (has_feature(kFeatureRoughGlass) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) {
+    return sky_pick_probability() / (4.0f * kPi);  // the whole sphere (sample_sky)
+  }
   return sky_pick_probability() * cosine_hemisphere_pdf(max(dot(n, wi), 0.0f));
 }
 

@@ -26,7 +26,8 @@ const uint kMisClassDiffuse = 0u;
 const uint kMisClassGlossy = 1u;
 
 uint mis_class(uint lobe) {
-  return lobe == kMaterialConductor || lobe == kMaterialDielectric ? kMisClassGlossy : kMisClassDiffuse;
+  return lobe == kMaterialConductor || lobe == kMaterialDielectric || lobe == kMaterialRoughGlass ? kMisClassGlossy
+                                                                                                  : kMisClassDiffuse;
 }
 
 // The light pdf's factor in the weights at a vertex of this lobe (1 outside stage5's renders).

@@ -31,6 +31,11 @@ const uint kMaterialDielectric = 5u;
 // which choose_lobe picks between: the layer's mirror reflection (a delta), and the base.
 const uint kLobeSmoothLayer = 6u;
 const uint kLobeSmoothBase = 7u;
+// KHR_materials_transmission with roughness > 0: a rough dielectric (Walter et al. 2007,
+// GGX reflection and refraction; common/kernel/rough_dielectric.glsl), alpha = roughness^2.
+// Its Material.ior is relative: the index beyond the surface over the index on the side the
+// ray arrives from (surface_material divides 1 by it on a back-face hit).
+const uint kMaterialRoughGlass = 8u;
 // A GGX conductor smoother than this is a perfect mirror (a delta): below it the float
 // evaluation of D(h) = alpha^2 / (pi (...)^2) at the peak under- and overflows (alpha 0:
 // 0 / 0), and the lobe is narrower than a float direction can resolve anyway (docs/stability.md).
@@ -94,7 +99,10 @@ const uint kFeatureSky = 1u << 10u;
 const uint kFeatureTextures = 1u << 11u;        // textures or vertex colours (texture.glsl)
 const uint kFeatureAlphaMask = 1u << 12u;       // alphaMode MASK: holes rays pass (intersect.glsl)
 const uint kFeatureDielectric = 1u << 13u;      // glTF's dielectric: specular layer over a base
-const uint kFeatureAll = (1u << 14u) - 1u;
+const uint kFeatureRoughGlass = 1u << 15u;      // rough dielectric transmission (kMaterialRoughGlass)
+// Bit 14 is kFeatureShadingNormals (branch `shading`, issue #46): once both are merged,
+// kFeatureAll = (1u << 16u) - 1u.
+const uint kFeatureAll = ((1u << 14u) - 1u) | kFeatureRoughGlass;
 
 // Textures (common/kernel/texture.glsl, issue #19): what a sampler does at the edges and
 // between texels (glTF's sampler wrapS / wrapT and magFilter), and "no texture".

@@ -17,10 +17,15 @@
 // The material with metallic and roughness taken from a metallic-roughness texture:
 // make_gltf_material's rule (common/scene/scene.cpp) at this point: metallic 1 is a
 // conductor (a mirror at roughness 0, else GGX with alpha = roughness^2), metallic 0 is
-// diffuse, between the two it is mixed. Glass stays glass (transmission wins). A glTF
+// diffuse, between the two it is mixed. Glass stays glass (transmission wins); rough glass
+// takes the roughness (below: at least kGgxMirrorAlpha). A glTF
 // material (kMaterialDielectric) stays one: its metallic mixes its two parts.
 Material with_metallic_roughness(Material m, float metallic, float roughness) {
-  if (has_feature(kFeatureDielectric) && m.kind == kMaterialDielectric) {
+  if (has_feature(kFeatureRoughGlass) && m.kind == kMaterialRoughGlass) {
+    // Rough glass stays rough glass and reads only the roughness: where it is 0, alpha
+    // stops at kGgxMirrorAlpha, a lobe narrower than a float direction (smooth in effect).
+    m.alpha = max(roughness * roughness, kGgxMirrorAlpha);
+  } else if (has_feature(kFeatureDielectric) && m.kind == kMaterialDielectric) {
     m.metallic = clamp(metallic, 0.0f, 1.0f);
     m.alpha = roughness * roughness;
   } else if (metallic >= 1.0f) {
@@ -95,7 +100,16 @@ Material textured_material(uint material, uint tri, float b1, float b2) {
 // with its textures and the vertex colour applied where the scene has them. (A kernel
 // with texture code may render a scene without: its backend binds neutral entries of
 // material_textures[], which name no texture and are not enabled.)
+// Rough glass's ior is made relative to the side the ray arrives from: inverted on a back face.
 Material surface_material(Surface surface) {
+  if (has_feature(kFeatureRoughGlass)) {
+    Material m = materials[surface.material];
+    if (has_feature(kFeatureTextures) && surface.triangle != kNoTriangle) {
+      m = textured_material(surface.material, surface.triangle, surface.b1, surface.b2);
+    }
+    if (m.kind == kMaterialRoughGlass && !surface.front) m.ior = 1.0f / m.ior;
+    return m;
+  }
   if (!has_feature(kFeatureTextures) || surface.triangle == kNoTriangle) return materials[surface.material];
   return textured_material(surface.material, surface.triangle, surface.b1, surface.b2);
 }

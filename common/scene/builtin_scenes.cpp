@@ -91,7 +91,7 @@ Scene cornell_glass() {
 
 // Every feature the renderer models in one room (issue "model only what a scene
 // requires": the general kernel's own scene): triangles and spheres; diffuse, mirror,
-// GGX, glass and mixed materials; a textured back wall with vertex colours and holes (an
+// GGX, glass, rough glass and mixed materials; a textured back wall with vertex colours and holes (an
 // alpha mask); emissive triangles, an emissive sphere, a point light and a spot light
 // (render it with --sky for the last feature).
 Scene every_feature() {
@@ -105,6 +105,8 @@ Scene every_feature() {
   GltfPbr plastic;  // a glTF file's material: a GGX layer over a base, a quarter metal
   plastic.base = {0.8f, 0.3f, 0.2f}, plastic.metallic = 0.25f, plastic.roughness = 0.4f;
   s.add_sphere({-0.6f, 0.5f, -0.6f}, 0.15f, s.add_material(make_gltf_pbr_material(plastic)));
+  // Rough glass (KHR_materials_transmission with roughness 0.3, rough_dielectric.glsl).
+  s.add_sphere({0.45f, 0.3f, 0.5f}, 0.15f, s.add_material(make_rough_glass(glm::vec3(0.9f, 1.0f, 0.95f), 1.5f, 0.3f)));
   add_textured_back_wall(s, true);
   s.point_lights.push_back(make_point_light({0.6f, 0.8f, 0.6f}, {0.3f, 0.3f, 0.2f}));
   s.point_lights.push_back(make_spot_light({-0.6f, 0.9f, -0.6f}, {0.0f, -1.0f, 0.0f}, {0.4f, 0.35f, 0.3f}, 0.3f, 0.5f));

@@ -77,11 +77,20 @@ Material make_glass(glm::vec3 tint, float ior) {
   return m;
 }
 
+Material make_rough_glass(glm::vec3 tint, float ior, float roughness) {
+  Material m = make_glass(tint, ior);
+  m.kind = kMaterialRoughGlass;
+  m.alpha = std::max(roughness * roughness, kGgxMirrorAlpha);
+  return m;
+}
+
 Material make_gltf_material(glm::vec3 base, float metallic, float roughness, float transmission,
                             float ior, glm::vec3 emission, bool double_sided) {
   Material m;
   if (transmission > 0.0f) {
-    m = make_glass(base, ior);
+    // Rough glass at roughness > 0; smooth glass at 0, and at ior 1, where no microfacet
+    // bends the light and the rough refraction's half vector is undefined.
+    m = roughness > 0.0f && ior != 1.0f ? make_rough_glass(base, ior, roughness) : make_glass(base, ior);
   } else if (metallic >= 1.0f) {
     m = make_metal(base, roughness);
   } else if (metallic <= 0.0f) {

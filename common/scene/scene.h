@@ -90,6 +90,9 @@ CameraDesc orthographic_front(float z, float half);
 Material make_diffuse(glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f), bool double_sided = false);
 Material make_metal(glm::vec3 f0, float roughness);  // roughness 0: mirror, else GGX alpha = r^2
 Material make_glass(glm::vec3 tint, float ior);
+// Rough glass (kMaterialRoughGlass, rough_dielectric.glsl): alpha = roughness^2, at least
+// kGgxMirrorAlpha. make_gltf_material makes it for transmission with roughness > 0.
+Material make_rough_glass(glm::vec3 tint, float ior, float roughness);
 // The full glTF metallic-roughness rule (transmission wins, then metallic 0 / 1 / between).
 // Built-in scenes' simple materials: metallic 0 is Lambert (no specular layer).
 Material make_gltf_material(glm::vec3 base, float metallic, float roughness, float transmission,

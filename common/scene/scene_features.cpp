@@ -23,6 +23,7 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
         mask |= kFeatureConductor | (m.alpha < kGgxMirrorAlpha ? kFeatureMirror : 0u);
         break;
       case kMaterialGlass: mask |= kFeatureGlass; break;
+      case kMaterialRoughGlass: mask |= kFeatureRoughGlass; break;  // its texture keeps it rough (texture.glsl)
       case kMaterialDielectric:  // the dielectric, and the conductor when metallic is above 0
         mask |= kFeatureDielectric | kFeatureDiffuse;
         if (m.metallic > 0.0f) mask |= m.alpha >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror;
@@ -36,7 +37,7 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
   auto add_textured = [&](uint index) {
     const Material& m = scene.materials[index];
     uint tex = uses_textures(scene) ? scene.material_textures[index].metallic_roughness : kNoTexture;
-    if (tex == kNoTexture || m.kind == kMaterialGlass) return add_material(m);
+    if (tex == kNoTexture || m.kind == kMaterialGlass || m.kind == kMaterialRoughGlass) return add_material(m);
     if (tex_seen.size() < scene.materials.size()) tex_seen.resize(scene.materials.size(), 0);
     if (tex_seen[index]) return;
     tex_seen[index] = 1;
@@ -77,10 +78,11 @@ std::string feature_names(uint mask) {
     uint bit;
     const char* name;
   };
-  const Name groups[3][8] = {
+  const Name groups[3][10] = {
       {{kFeatureTriangles, "triangles"}, {kFeatureSpheres, "spheres"}},
       {{kFeatureDiffuse, "diffuse"}, {kFeatureMirror, "mirror"}, {kFeatureConductor, "GGX conductor"},
        {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureDielectric, "glTF dielectric"},
+       {kFeatureRoughGlass, "rough glass"},
        {kFeatureTextures, "textures"}, {kFeatureAlphaMask, "alpha masks"}},
       {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
        {kFeaturePointLights, "punctual lights"}, {kFeatureSky, "sky"}}};

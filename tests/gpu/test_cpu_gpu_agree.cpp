@@ -20,14 +20,15 @@ using namespace pt::test;
 
 namespace {
 
-// Fraction of pixels whose every channel agrees within a relative 1e-5 (or 1e-6 absolute).
-double agreeing_fraction(const Film& a, const Film& b) {
+// Fraction of pixels whose every channel agrees within a relative `relative` (1e-5 unless
+// said; or 1e-6 absolute).
+double agreeing_fraction(const Film& a, const Film& b, double relative = 1e-5) {
   int agree = 0;
   for (int y = 0; y < a.height(); y++) {
     for (int x = 0; x < a.width(); x++) {
       glm::dvec3 u = a.mean(x, y), v = b.mean(x, y);
       bool same = true;
-      for (int c = 0; c < 3; c++) same = same && std::abs(u[c] - v[c]) <= 1e-6 + 1e-5 * std::abs(u[c]);
+      for (int c = 0; c < 3; c++) same = same && std::abs(u[c] - v[c]) <= 1e-6 + relative * std::abs(u[c]);
       agree += same;
     }
   }
@@ -186,5 +187,38 @@ TEST_CASE("glTF material: CPU and GPU images of the same seed agree to rounding"
     RenderResult gpu = render_on("gpu", kernels, scene, s);
     INFO(kernels.name);
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
+  }
+}
+
+// Rough glass (issue #46, KHR_materials_transmission with roughness; rough_dielectric.glsl)
+// on both backends: one rough glass sheet, seen from above in perspective, the sky on both
+// of its sides (one bounce: reflected or refracted to the sky; stages 4 and 5 also sample
+// the sky's whole sphere there). Where each side's index is the other's inverse: the sheet's
+// upper triangle faces up, the lower one down. The images agree to rounding (see below).
+TEST_CASE("rough glass: CPU and GPU images of the same seed agree to rounding", "[stage2][stage3][stage4][stage5][gpu]") {
+  Scene scene;
+  uint g = scene.add_material(make_rough_glass(glm::vec3(0.9f, 0.8f, 1.0f), 1.5f, 0.4f));
+  scene.add_triangle({-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, g);   // facing up
+  scene.add_triangle({-50, 0, 50}, {-50, 0, -50}, {50, 0, -50}, g);  // facing down: seen from its back
+  CameraDesc camera;  // at (0, 1, 0), pitched 50 degrees down
+  camera.to_world = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0)), glm::radians(-50.0f), glm::vec3(1, 0, 0));
+  camera.yfov = glm::radians(60.0f);
+  scene.camera = camera;
+  build_light_table(scene);  // no light but the sky
+  for (const StageKernels& kernels : {stage2::kernels(), stage3::kernels(), stage4::kernels(), stage5::kernels()}) {
+    RenderSettings s = settings(48, 36, 4, 29);
+    s.sky = glm::vec3(0.5f, 1.0f, 2.0f);
+    RenderResult cpu = render_on("cpu", kernels, scene, s);
+    RenderResult gpu = render_on("gpu", kernels, scene, s);
+    INFO(kernels.name << ": within 1e-5 " << agreeing_fraction(cpu.film, gpu.film) << ", 1e-4 "
+                       << agreeing_fraction(cpu.film, gpu.film, 1e-4) << ", 1e-3 "
+                       << agreeing_fraction(cpu.film, gpu.film, 1e-3) << ", 1e-2 "
+                       << agreeing_fraction(cpu.film, gpu.film, 1e-2));
+    // Rough refraction's f is ill-conditioned in float where a microfacet is seen nearly
+    // edge-on (small wo.h; the reciprocity test sees 1e-3 between two float evaluations),
+    // and the driver's fused multiply-adds move it there: measured, 99.7-99.9% of the pixels
+    // agree to 1e-5, all but stage2's one pixel (a uniform sample in f's tail) to 1e-4, all to 1e-2.
+    CHECK(agreeing_fraction(cpu.film, gpu.film, 1e-4) >= 0.999);
+    CHECK(agreeing_fraction(cpu.film, gpu.film, 1e-2) == 1.0);
   }
 }

@@ -42,7 +42,8 @@ const Case kCases[] = {
 };
 
 // The Cornell box whose boxes have glTF files' materials: the short one a rough dielectric
-// mixed with metal, the tall one a smooth dielectric (a delta layer over its base).
+// mixed with metal, the tall one a smooth dielectric (a delta layer over its base); and a
+// rough glass sphere (KHR_materials_transmission with roughness).
 Scene gltf_case() {
   Scene scene = make_builtin_scene("cornell");
   GltfPbr rough, smooth;
@@ -51,6 +52,7 @@ Scene gltf_case() {
   uint r = scene.add_material(make_gltf_pbr_material(rough)), s = scene.add_material(make_gltf_pbr_material(smooth));
   std::size_t n = scene.triangles.size();
   for (std::size_t i = n - 24; i < n; i++) scene.triangles[i].material = i < n - 12 ? r : s;
+  scene.add_sphere({-0.1f, 0.2f, 0.5f}, 0.2f, scene.add_material(make_rough_glass(glm::vec3(1.0f), 1.5f, 0.3f)));
   return scene;
 }
 

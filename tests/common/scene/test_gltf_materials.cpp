@@ -122,6 +122,36 @@ TEST_CASE("KHR_materials_specular weighs and tints the dielectric's layer; specu
   CHECK(pt_test::occurrences(err, "KHR_materials_specular;") == 0);  // modelled: not in that list
 }
 
+TEST_CASE("KHR_materials_transmission with roughness is rough glass (alpha = roughness^2); roughness 0 or ior 1 "
+          "is smooth glass",
+          "[loader][rough_glass]") {
+  GltfWriter g;
+  auto glass = [](double roughness, double ior) {
+    return GltfWriter::Json{
+        {"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 1.0, 0.8, 1.0}}, {"roughnessFactor", roughness}}},
+        {"extensions",
+         {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", ior}}}}}};
+  };
+  int materials[3] = {g.material(glass(0.5, 1.33)), g.material(glass(0.0, 1.5)), g.material(glass(0.5, 1.0))};
+  for (int i = 0; i < 3; i++) {
+    float x = 2.0f * float(i);
+    g.node({{"mesh", g.mesh({{x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}}, materials[i])}});
+  }
+  g.uses("KHR_materials_transmission");
+  g.uses("KHR_materials_ior");
+  pt::Scene scene = pt::load_gltf(g.write(pt_test::scratch_dir("pt_gltf_materials").string() + "/rough_glass.gltf"));
+  const pt::Material& rough = material_at(scene, 0);
+  CHECK(rough.kind == pt::kMaterialRoughGlass);
+  CHECK(rough.alpha == Approx(0.25f));
+  CHECK(rough.ior == Approx(1.33f));
+  check_point(rough.base_color, {0.9f, 1.0f, 0.8f});
+  CHECK(material_at(scene, 2).kind == pt::kMaterialGlass);
+  CHECK(material_at(scene, 4).kind == pt::kMaterialGlass);  // index-matched: nothing bends
+  CHECK((pt::scene_feature_mask(scene, glm::vec3(0.0f)) & (pt::kFeatureRoughGlass | pt::kFeatureGlass)) ==
+        (pt::kFeatureRoughGlass | pt::kFeatureGlass));
+  CHECK(pt::feature_names(pt::kFeatureRoughGlass).find("rough glass") != std::string::npos);
+}
+
 // --- Lights ---------------------------------------------------------------------------
 
 TEST_CASE("KHR_lights_punctual lights sit at their node with intensity / 683 lm/W times colour, in the order met",
