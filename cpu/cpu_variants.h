@@ -18,8 +18,8 @@ constexpr uint kCpuBaseFeatures = kFeatureTriangles | kFeatureDiffuse | kFeature
 constexpr uint kCpuFeatureGroups[] = {
     kFeatureSpheres | kFeatureSphereLights,  // bit 0: spheres
     kFeatureMirror | kFeatureGlass,          // bit 1: delta lobes
-    kFeatureConductor | kFeatureMixed | kFeatureTextures | kFeatureAlphaMask |
-        kFeatureDielectric,                  // bit 2: GGX, mixed, textures, glTF's dielectric
+    kFeatureConductor | kFeatureMixed | kFeatureTextures | kFeatureAlphaMask | kFeatureDielectric |
+        kFeatureShadingNormals,              // bit 2: GGX, mixed, textures, glTF's dielectric, shading normals
     kFeaturePointLights | kFeatureSky,       // bit 3: lights other than area lights
 };
 constexpr unsigned kCpuFeatureGroupCount = sizeof kCpuFeatureGroups / sizeof kCpuFeatureGroups[0];

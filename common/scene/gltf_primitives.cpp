@@ -22,7 +22,8 @@ bool material_needs_attributes(const tinygltf::Model& model, int index) {
   if (index < 0) return false;
   const tinygltf::Material& m = model.materials[std::size_t(index)];
   return m.pbrMetallicRoughness.baseColorTexture.index >= 0 || m.emissiveTexture.index >= 0 ||
-         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.alphaMode == "MASK";
+         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
+         m.alphaMode == "MASK";
 }
 
 std::string scene_label(const tinygltf::Model& model, std::size_t s) {
