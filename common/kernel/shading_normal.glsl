@@ -46,7 +46,8 @@ vec3 front_shading_normal(Surface surface) {
   if (!(t_len > 1e-6f)) return n;  // a tangent along the normal: no frame to read the map in
   t = t / t_len;
   float handedness = b0 * s.handedness0 + surface.b1 * s.handedness1 + surface.b2 * s.handedness2;
-  vec3 b = (handedness < 0.0f ? -1.0f : 1.0f) * cross(n, t);
+  vec3 b = cross(n, t);
+  if (handedness < 0.0f) b = -b;
   vec2 uv = normal_map_uv(surface.triangle, surface.b1, surface.b2);
   vec4 texel = texture_lookup(mt.normal, transform_uv(vec3(mt.normal_s), vec3(mt.normal_t), uv), false);
   vec3 m = vec3((2.0f * texel.x - 1.0f) * mt.normal_scale, (2.0f * texel.y - 1.0f) * mt.normal_scale,

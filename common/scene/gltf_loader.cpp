@@ -255,7 +255,7 @@ Scene load_gltf(const std::string& path, const std::string& scene_choice) {
   warn_unmodelled(model, path);
   const gltf::DrawCount count = gltf::count_draws(model, roots);
   const std::string skipped = gltf::skipped_text(count);
-  check_triangle_budget(count.triangles, count.overflowed, count.attributes, path);
+  check_triangle_budget(count.triangles, count.overflowed, count.attributes, path, count.shading);
   gltf::SceneBuilder builder(model, path);
   for (int root : roots) builder.add_tree(root);
   Scene scene = builder.take();

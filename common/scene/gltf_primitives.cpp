@@ -133,6 +133,9 @@ DrawCount count_draws(const tinygltf::Model& model, const std::vector<int>& root
         per_mesh[m] += mode_triangles(prim.mode, model.accessors[std::size_t(accessor)].count);  // < 2^31 each
         if (material_needs_attributes(model, prim.material) || prim.attributes.count("COLOR_0"))
           count.attributes = true;
+        if (prim.attributes.count("NORMAL") ||
+            (prim.material >= 0 && model.materials[std::size_t(prim.material)].normalTexture.index >= 0))
+          count.shading = true;
       }
     }
     std::uint64_t placed = 0;  // the mesh's triangles once for every instance

@@ -28,6 +28,7 @@ struct DrawCount {
   std::uint64_t triangles = 0;
   bool overflowed = false;
   bool attributes = false;
+  bool shading = false;  // some primitive will need TriangleShading (NORMAL or a normal map)
   std::uint64_t skipped[4] = {0, 0, 0, 0};
 };
 DrawCount count_draws(const tinygltf::Model& model, const std::vector<int>& roots);
