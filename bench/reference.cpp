@@ -73,6 +73,7 @@ std::uint64_t reference_key(const Scene& s, const Config& config, const StageKer
   Hash h;
   h.add_vector(s.triangles), h.add_vector(s.spheres), h.add_vector(s.materials), h.add_vector(s.point_lights);
   h.add_vector(s.triangle_attributes), h.add_vector(s.material_textures), h.add_vector(s.textures), h.add_vector(s.texels);
+  h.add_vector(s.triangle_shading);
   if (s.camera) {
     h.add(&s.camera->kind, sizeof s.camera->kind), h.add(&s.camera->to_world, sizeof s.camera->to_world);
     h.add(&s.camera->yfov, sizeof(float)), h.add(&s.camera->xmag, sizeof(float)), h.add(&s.camera->ymag, sizeof(float));

@@ -62,6 +62,7 @@ class CpuBackend : public Backend {
       neutral_ = neutral_material_textures(scene.materials.size());
       scene_.material_textures = neutral_.data();
     }
+    if (uses_shading_normals(scene)) scene_.triangle_shading = scene.triangle_shading.data();
     wide_.reset();
     if (bvh && !bvh->nodes.empty()) {
       scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();

@@ -36,6 +36,8 @@ inline const TriangleAttributes* triangle_attributes = nullptr;  // parallel to 
 inline const MaterialTextures* material_textures = nullptr;      // parallel to materials[]
 inline const Texture* textures = nullptr;                        // the texture table
 inline const uint* texels = nullptr;                             // 8-bit RGBA texels
+// Shading normals (common/kernel/shading_normal.glsl): nullptr when the scene has none.
+inline const TriangleShading* triangle_shading = nullptr;        // parallel to triangles[]
 inline Triangle triangle_at(uint i) { return triangles[i]; }
 // The BVH's nodes as bvh.glsl reads them (gpu/kernel_bindings.glsl reads them as texels).
 inline BvhNode bvh_node_at(uint i) { return bvh_nodes[i]; }

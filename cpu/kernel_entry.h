@@ -22,6 +22,7 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   material_textures = scene.material_textures;
   textures = scene.textures;
   texels = scene.texels;
+  triangle_shading = scene.triangle_shading;
   params = pass;
 }
 

@@ -16,7 +16,7 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 15;
+constexpr uint32_t kBindingCount = 16;
 constexpr uint32_t kParamsBinding = 4;
 constexpr uint32_t kUniformTrianglesBinding = 8;
 constexpr uint32_t kBvhNodesBinding = 9;  // a uniform texel buffer

@@ -97,6 +97,9 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
            (textured ? scene.material_textures.size() : neutral.size()) * sizeof(MaterialTextures));
     upload(textures_, scene.textures.data(), textured ? scene.textures.size() * sizeof(Texture) : 0);
     upload(texels_, scene.texels.data(), textured ? scene.texels.size() * sizeof(uint) : 0, "the textures need");
+    const bool shaded = (features & kFeatureShadingNormals) && uses_shading_normals(scene);  // else a placeholder
+    upload(triangle_shading_, scene.triangle_shading.data(),
+           shaded ? scene.triangle_shading.size() * sizeof(TriangleShading) : 0, "the shading normals need");
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
     // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
     std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
@@ -130,6 +133,8 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
       need(scene.triangle_attributes.size(), sizeof(TriangleAttributes), "the vertex attributes need");
       need(scene.texels.size(), sizeof(uint), "the textures need");
     }
+    if ((features & kFeatureShadingNormals) && uses_shading_normals(scene))
+      need(scene.triangle_shading.size(), sizeof(TriangleShading), "the shading normals need");
     need(pixels, sizeof(glm::vec4), "the image needs");
     if (total > context_.heap_size()) {
       throw Error(kExitNoDevice, "the render needs " + megabytes(total) + " of buffers in all but device '" +
@@ -186,7 +191,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_,   &materials_, &point_lights_,     &params_,
                                             &output_,    &counters_, &lights_,    &uniform_triangles_,
                                             &bvh_nodes_, &bvh_indices_, &triangle_attributes_, &material_textures_,
-                                            &textures_,  &texels_};
+                                            &textures_,  &texels_,   &triangle_shading_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -317,6 +322,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
   Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_, uniform_triangles_;
   Buffer bvh_nodes_, bvh_indices_;  // bindings 9 and 10
   Buffer triangle_attributes_, material_textures_, textures_, texels_;  // bindings 11 to 14
+  Buffer triangle_shading_;                                             // binding 15
 };
 
 }  // namespace

@@ -34,6 +34,8 @@ layout(std430, set = 0, binding = 11) readonly buffer TriangleAttributeBuffer { 
 layout(std430, set = 0, binding = 12) readonly buffer MaterialTextureBuffer { MaterialTextures material_textures[]; };
 layout(std430, set = 0, binding = 13) readonly buffer TextureBuffer { Texture textures[]; };
 layout(std430, set = 0, binding = 14) readonly buffer TexelBuffer { uint texels[]; };
+// Shading normals (common/kernel/shading_normal.glsl); a placeholder without them.
+layout(std430, set = 0, binding = 15) readonly buffer TriangleShadingBuffer { TriangleShading triangle_shading[]; };
 uint rng_state;  // the random-number state of one invocation
 uvec4 sampler_state;  // the sampler's state of one invocation (common/kernel/sampler.glsl)
 

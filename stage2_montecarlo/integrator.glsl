@@ -9,6 +9,7 @@
 #include "common/kernel/texture.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
+#include "common/kernel/shading_normal.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/roulette.glsl"
 
@@ -28,7 +29,8 @@ vec3 Li(Ray ray) {
     L += beta * emitted_radiance(material, surface.front);
 
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
-    Frame frame = make_frame(surface.front ? surface.n : -surface.n);
+    // (Its normal is the shading normal where the triangle has one: shading_normal.glsl.)
+    Frame frame = shading_frame(surface, ray.dir);
     vec3 wo = frame_to_local(frame, -ray.dir);
     uint lobe = choose_lobe(material, wo, sample_1d());
     vec3 wi;
@@ -47,7 +49,7 @@ vec3 Li(Ray ray) {
     float survive = russian_roulette(beta, params.roulette);
     if (survive == 0.0f) break;
     beta *= survive;
-    ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+    ray = spawn_ray(surface.p, surface.n, shading_to_world(frame, surface, wi));
   }
   return L;
 }

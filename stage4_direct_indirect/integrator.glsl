@@ -9,6 +9,7 @@
 #include "common/kernel/texture.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
+#include "common/kernel/shading_normal.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/roulette.glsl"
 #include "common/kernel/lights.glsl"
@@ -32,8 +33,9 @@ vec3 Li(Ray ray) {
     if (counts_emission(depth, after_delta)) L += beta * emitted_radiance(material, surface.front);
 
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
+    // (Its normal is the shading normal where the triangle has one: shading_normal.glsl.)
     vec3 n = surface.front ? surface.n : -surface.n;
-    Frame frame = make_frame(n);
+    Frame frame = shading_frame(surface, ray.dir);
     vec3 wo = frame_to_local(frame, -ray.dir);
     uint lobe = choose_lobe(material, wo, sample_1d());
     vec3 wi;
@@ -45,13 +47,12 @@ vec3 Li(Ray ray) {
     } else {
       // Eq. (5), corrected (erratum 5): direct light f Le V cos_x cos_y / d^2 / pdf_A,
       // with the geometry term and the pdf inside the light sample's weight.
-      // (Rough glass sees lights on both sides: light_sample_normal, lobe_cos.)
+      // (Rough glass sees lights on both sides: light_sample_normal, bsdf_toward.)
       LightSample ls = sample_light(surface.p, light_sample_normal(lobe, n));
-      vec3 wl = frame_to_local(frame, ls.wi);
-      vec3 f = eval_lobe(lobe, material, wo, wl);
-      if (lobe_cos(lobe, wl) > 0.0f && max_component(f * ls.weight) > 0.0f &&
+      BsdfToward b = bsdf_toward(lobe, material, wo, frame, surface, ls.wi);  // f and its cosine
+      if (b.cos > 0.0f && max_component(b.f * ls.weight) > 0.0f &&
           !occluded(surface.p, surface.n, ls)) {
-        L += beta * f * ls.weight * lobe_cos(lobe, wl);
+        L += beta * b.f * ls.weight * b.cos;
       }
       // Indirect light: one BRDF-sampled direction, as in stage3 (Eq. 4).
       LobeSample s = sample_lobe(lobe, material, wo, lobe_numbers(lobe));
@@ -65,7 +66,7 @@ vec3 Li(Ray ray) {
     float survive = russian_roulette(beta, params.roulette);
     if (survive == 0.0f) break;
     beta *= survive;
-    ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+    ray = spawn_ray(surface.p, surface.n, shading_to_world(frame, surface, wi));
   }
   return L;
 }

@@ -15,6 +15,7 @@
 #include "common/kernel/texture.glsl"
 #include "common/kernel/sampling.glsl"
 #include "common/kernel/bsdf.glsl"
+#include "common/kernel/shading_normal.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/roulette.glsl"
 #include "common/kernel/lights.glsl"
@@ -72,8 +73,9 @@ vec3 Li(Ray ray) {
     beta *= survive;  // the roulette's 1 / p, after the emission this ray found
 
     // Directions in the frame of the side the ray came from: surfaces reflect on both sides.
+    // (Its normal is the shading normal where the triangle has one: shading_normal.glsl.)
     vec3 n = surface.front ? surface.n : -surface.n;
-    Frame frame = make_frame(n);
+    Frame frame = shading_frame(surface, ray.dir);
     vec3 wo = frame_to_local(frame, -ray.dir);
     uint lobe = choose_lobe(material, wo, sample_1d());
     vec3 wi;
@@ -87,15 +89,15 @@ vec3 Li(Ray ray) {
       // The light sample: direct light as in stage4, weighed against the BSDF sample that
       // could have found the same point (a point light is a delta: the light sample only).
       float scale = mis_light_scale(lobe);
-      // (Rough glass sees lights on both sides: light_sample_normal, lobe_cos.)
+      // (Rough glass sees lights on both sides: light_sample_normal, bsdf_toward.)
       vec3 light_n = light_sample_normal(lobe, n);
       LightSample ls = sample_light_by(surface.p, light_n, kTriangleBySolidAngle);
-      vec3 wl = frame_to_local(frame, ls.wi);
-      vec3 f = eval_lobe(lobe, material, wo, wl);
+      BsdfToward b = bsdf_toward(lobe, material, wo, frame, surface, ls.wi);  // f and its cosine
       vec3 direct = vec3(0.0f);  // what the light sample alone finds (the pilot's X_l)
-      if (lobe_cos(lobe, wl) > 0.0f && max_component(f * ls.weight) > 0.0f && !occluded(surface.p, surface.n, ls)) {
-        direct = beta * f * ls.weight * lobe_cos(lobe, wl);
-        float w = ls.pdf > 0.0f ? power_heuristic(scale * ls.pdf, lobe_pdf(lobe, material, wo, wl)) : 1.0f;
+      if (b.cos > 0.0f && max_component(b.f * ls.weight) > 0.0f && !occluded(surface.p, surface.n, ls)) {
+        direct = beta * b.f * ls.weight * b.cos;
+        float pdf_bsdf = bsdf_pdf_toward(lobe, material, wo, frame, surface, ls.wi);  // lobe_pdf, or folded
+        float w = ls.pdf > 0.0f ? power_heuristic(scale * ls.pdf, pdf_bsdf) : 1.0f;
         L += direct * w;
       }
       // The pilot's X_l: what a BSDF sample could also find (a delta light's share is not).
@@ -111,11 +113,11 @@ vec3 Li(Ray ray) {
       specular = false;
       from_p = surface.p;
       from_n = light_n;
-      bsdf_pdf = s.pdf;
+      bsdf_pdf = sampled_pdf(s, lobe, material, wo, frame, surface);  // s.pdf, or the folded pdf
       from_scale = scale;
     }
 
-    ray = spawn_ray(surface.p, surface.n, frame_to_world(frame, wi));
+    ray = spawn_ray(surface.p, surface.n, shading_to_world(frame, surface, wi));
     // Russian roulette for the path beyond the new ray's hit. It applies after the emission
     // that ray finds, not before the ray as in stages 2-4: the two strategies' shares of
     // one vertex's direct light then survive or end together, as their MIS weights assume

@@ -29,5 +29,5 @@ pt_printed_formula(stage3_eq4 stage3_importance
   "lobe_cos(lobe, s.wi) / (2.0f * kPi);")
 # Erratum 5: Eq. (5) as printed, f Le cos_x: no geometry term cos_y / d^2, no area pdf.
 pt_printed_formula(stage4_eq5 stage4_direct_indirect
-  "L += beta * f * ls.weight * lobe_cos(lobe, wl);"
-  "L += beta * f * ls.weight * ls.pdf * lobe_cos(lobe, wl);")
+  "L += beta * b.f * ls.weight * b.cos;"
+  "L += beta * b.f * ls.weight * ls.pdf * b.cos;")

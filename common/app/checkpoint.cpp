@@ -68,6 +68,7 @@ std::uint64_t scene_hash(const Scene& scene) {
   // Textures and vertex colours (empty without them).
   f.add_vector(scene.triangle_attributes);
   f.add_vector(scene.material_textures);
+  if (!scene.triangle_shading.empty()) f.add_vector(scene.triangle_shading);  // keeps older keys
   f.add_vector(scene.textures);
   f.add_vector(scene.texels);
   return f.h;

@@ -222,6 +222,7 @@ struct Surface {
   uint triangle;  // index into triangles[] (and triangle_attributes[]), or kNoTriangle
   float b1;       // barycentric weights of p1 and p2 at p (triangles): where its
   float b2;       // textures are read (texture.glsl: surface_material)
+  bool shaded;    // a triangle flagged kTriangleShadingNormals (shading_normal.glsl)
 };
 
 Surface surface_at(Ray ray, Hit hit) {
@@ -233,13 +234,14 @@ Surface surface_at(Ray ray, Hit hit) {
     // The barycentric point is more accurate than origin + t * dir far from the origin.
     vec3 p = (1.0f - hit.b1 - hit.b2) * p0 + hit.b1 * p1 + hit.b2 * p2;
     vec3 n = normalize(cross(p1 - p0, p2 - p0));
-    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.material, hit.prim, hit.b1, hit.b2);
+    bool shaded = has_feature(kFeatureShadingNormals) && (tri.flags & kTriangleShadingNormals) != 0u;
+    return Surface(p, n, dot(ray.dir, n) < 0.0f, tri.material, hit.prim, hit.b1, hit.b2, shaded);
   }
   Sphere sph = spheres[hit.prim];
   vec3 center = sph.center;
   vec3 p = ray.origin + hit.t * ray.dir;
   vec3 n = normalize(p - center);
-  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.material, kNoTriangle, 0.0f, 0.0f);
+  return Surface(p, n, dot(ray.dir, n) < 0.0f, sph.material, kNoTriangle, 0.0f, 0.0f, false);
 }
 
 // glTF's alphaMode MASK (beyond the article; issue #19): where a masked material's alpha

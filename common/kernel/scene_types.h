@@ -99,10 +99,9 @@ const uint kFeatureSky = 1u << 10u;
 const uint kFeatureTextures = 1u << 11u;        // textures or vertex colours (texture.glsl)
 const uint kFeatureAlphaMask = 1u << 12u;       // alphaMode MASK: holes rays pass (intersect.glsl)
 const uint kFeatureDielectric = 1u << 13u;      // glTF's dielectric: specular layer over a base
+const uint kFeatureShadingNormals = 1u << 14u;  // vertex normals, normal maps (shading_normal.glsl)
 const uint kFeatureRoughGlass = 1u << 15u;      // rough dielectric transmission (kMaterialRoughGlass)
-// Bit 14 is kFeatureShadingNormals (branch `shading`, issue #46): once both are merged,
-// kFeatureAll = (1u << 16u) - 1u.
-const uint kFeatureAll = ((1u << 14u) - 1u) | kFeatureRoughGlass;
+const uint kFeatureAll = (1u << 16u) - 1u;
 
 // Textures (common/kernel/texture.glsl, issue #19): what a sampler does at the edges and
 // between texels (glTF's sampler wrapS / wrapT and magFilter), and "no texture".
@@ -137,6 +136,10 @@ struct Triangle {
 // Triangle.flags: its material has an alpha mask (alphaMode MASK), so a ray's hit on it is
 // checked for a hole (intersect.glsl cut_out); other triangles are never looked up.
 const uint kTriangleMasked = 1u;
+// Triangle.flags: it is shaded with its own normals (vertex normals that differ from its face
+// normal, or a normal map; common/kernel/shading_normal.glsl reads its TriangleShading); the
+// others are shaded with the geometric normal, as before.
+const uint kTriangleShadingNormals = 2u;
 
 struct Sphere {
   vec3 center;    // centre (world space)
@@ -240,6 +243,7 @@ const uint kSlotEmissive = 1u;
 const uint kSlotMetallicRoughness = 2u;
 const uint kSlotSpecular = 3u;
 const uint kSlotSpecularColor = 4u;
+const uint kSlotNormal = 5u;
 
 // The textures of one material, parallel to materials[] (empty when the scene has no
 // textures and no vertex colours). Each slot: a texture index (or kNoTexture) and its
@@ -273,6 +277,10 @@ struct MaterialTextures {
   float pad3;                  // unused
   vec3 specular_color_factor;  // specularColorFactor, which the texture scales before the
   float pad4;                  // layer's F0 is clamped to 1 (texture.glsl with_specular)
+  vec3 normal_s;               // normal texture (linear; tangent space, glTF's normalTexture)
+  uint normal;                 // textures[] index, or kNoTexture
+  vec3 normal_t;
+  float normal_scale;          // normalTexture.scale: scales the x and y of the map's normal
 };
 
 // What a triangle carries besides its corners, parallel to triangles[] (empty when the
@@ -288,6 +296,25 @@ struct TriangleAttributes {
   vec4 color2;
   vec2 set1_uv1; // TEXCOORD_1 at p1
   vec2 set1_uv2; // at p2
+};
+
+// A triangle's shading frame at its corners, parallel to triangles[] (empty when no triangle
+// is flagged kTriangleShadingNormals): glTF's NORMAL and TANGENT in world space (normals by
+// the inverse transpose of the node's transform), tangents made from the UVs where the file
+// has none. common/kernel/shading_normal.glsl interpolates them.
+struct TriangleShading {
+  vec3 normal0;        // unit vertex normal at p0
+  float pad0;          // unused
+  vec3 normal1;        // at p1
+  float pad1;
+  vec3 normal2;        // at p2
+  float pad2;
+  vec3 tangent0;       // unit tangent at p0 (the direction of increasing u)
+  float handedness0;   // +1 or -1: the bitangent is handedness * cross(normal, tangent)
+  vec3 tangent1;
+  float handedness1;
+  vec3 tangent2;
+  float handedness2;
 };
 
 // One node of the bounding volume hierarchy over the triangles (common/scene/bvh.h), in a
@@ -320,11 +347,14 @@ static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams,
 static_assert(offsetof(FrameParams, accel) == 136 && offsetof(FrameParams, sampler_kind) == 140);
 static_assert(offsetof(FrameParams, mis_diffuse) == 144 && offsetof(FrameParams, pilot) == 152);
 static_assert(sizeof(Texture) == 32);
-static_assert(sizeof(MaterialTextures) == 192 && offsetof(MaterialTextures, emissive_s) == 32);
+static_assert(sizeof(MaterialTextures) == 224 && offsetof(MaterialTextures, emissive_s) == 32);
 static_assert(offsetof(MaterialTextures, base_alpha) == 96 && offsetof(MaterialTextures, tex_coord_sets) == 104);
 static_assert(offsetof(MaterialTextures, specular_s) == 112 && offsetof(MaterialTextures, specular_t) == 128);
 static_assert(offsetof(MaterialTextures, specular_color_s) == 144 && offsetof(MaterialTextures, specular_color_t) == 160);
 static_assert(offsetof(MaterialTextures, specular_color_factor) == 176);
+static_assert(offsetof(MaterialTextures, normal_s) == 192 && offsetof(MaterialTextures, normal_scale) == 220);
+static_assert(sizeof(TriangleShading) == 96 && offsetof(TriangleShading, normal2) == 32);
+static_assert(offsetof(TriangleShading, tangent0) == 48 && offsetof(TriangleShading, handedness2) == 92);
 static_assert(offsetof(MaterialTextures, metallic_roughness_s) == 64 && offsetof(MaterialTextures, enabled) == 92);
 static_assert(sizeof(TriangleAttributes) == 96 && offsetof(TriangleAttributes, uv2) == 16);
 static_assert(offsetof(TriangleAttributes, set1_uv0) == 24 && offsetof(TriangleAttributes, color0) == 32);

@@ -39,6 +39,7 @@ struct KernelScene {
   const MaterialTextures* material_textures = nullptr;
   const Texture* textures = nullptr;
   const uint* texels = nullptr;
+  const TriangleShading* triangle_shading = nullptr;  // shading normals, or nullptr without them
 };
 
 // A stage's kernel compiled as C++ (cpu/kernel_entry.h).

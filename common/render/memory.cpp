@@ -108,6 +108,7 @@ std::uint64_t scene_array_bytes(const Scene& s) {
   b = add(b, mul(s.lights.size(), sizeof(Light)));
   b = add(b, mul(s.triangle_attributes.size(), sizeof(TriangleAttributes)));
   b = add(b, mul(s.material_textures.size(), sizeof(MaterialTextures)));
+  b = add(b, mul(s.triangle_shading.size(), sizeof(TriangleShading)));
   b = add(b, mul(s.textures.size(), sizeof(Texture)));
   b = add(b, mul(s.texels.size(), sizeof(uint)));
   return add(b, kGpuUniformTriangles);

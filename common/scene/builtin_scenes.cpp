@@ -108,6 +108,18 @@ Scene every_feature() {
   // Rough glass (KHR_materials_transmission with roughness 0.3, rough_dielectric.glsl).
   s.add_sphere({0.45f, 0.3f, 0.5f}, 0.15f, s.add_material(make_rough_glass(glm::vec3(0.9f, 1.0f, 0.95f), 1.5f, 0.3f)));
   add_textured_back_wall(s, true);
+  // A coarse sphere (20 faces) shaded smooth by its vertex normals (shading_normal.glsl).
+  for (const Triangle& t : s.triangles) s.triangle_shading.push_back(flat_shading(t));
+  const std::size_t first = s.triangles.size();
+  const glm::vec3 center(0.0f, -0.88f, 0.8f);
+  add_icosphere(s, center, 0.12f, 1, s.add_material(make_diffuse({0.3f, 0.7f, 0.4f})));
+  for (std::size_t i = first; i < s.triangles.size(); i++) {
+    Triangle& t = s.triangles[i];
+    TriangleShading& sh = s.triangle_shading[i];
+    sh.normal0 = glm::normalize(t.p0 - center), sh.normal1 = glm::normalize(t.p1 - center);
+    sh.normal2 = glm::normalize(t.p2 - center);
+    t.flags |= kTriangleShadingNormals;
+  }
   s.point_lights.push_back(make_point_light({0.6f, 0.8f, 0.6f}, {0.3f, 0.3f, 0.2f}));
   s.point_lights.push_back(make_spot_light({-0.6f, 0.9f, -0.6f}, {0.0f, -1.0f, 0.0f}, {0.4f, 0.35f, 0.3f}, 0.3f, 0.5f));
   return s;

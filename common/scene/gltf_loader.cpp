@@ -108,6 +108,10 @@ Scene SceneBuilder::take() {
     textures_.decode_into(scene_);
     mark_alpha_masked(scene_);
   }
+  // Shading normals only where some triangle needs them (kFeatureShadingNormals).
+  bool any = false;
+  for (const Triangle& t : scene_.triangles) any = any || (t.flags & kTriangleShadingNormals);
+  if (shading_on_ && any) scene_.triangle_shading = std::move(shading_);
   return std::move(scene_);
 }
 
@@ -166,9 +170,9 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
   // TEXCOORD_0 and TEXCOORD_1 where a texture of the material reads them, COLOR_0 where the
   // primitive has one; the attributes too where the material has an alpha mask.
   const MaterialTextures& mt = material_textures_[material];
-  const uint slots[5] = {mt.base_color, mt.emissive, mt.metallic_roughness, mt.specular, mt.specular_color};
+  const uint slots[6] = {mt.base_color, mt.emissive, mt.metallic_roughness, mt.specular, mt.specular_color, mt.normal};
   bool reads_set[2] = {false, false};
-  for (uint k = 0; k < 5; ++k) {
+  for (uint k = 0; k < 6; ++k) {
     if (slots[k] != kNoTexture) reads_set[(mt.tex_coord_sets >> k) & 1u] = true;
   }
   const bool textured = reads_set[0] || reads_set[1];
@@ -197,13 +201,22 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
     attributes_.assign(scene_.triangles.size(), no_triangle_attributes());
     attributes_on_ = true;
   }
+  // NORMAL and TANGENT, kept from the first primitive that has normals or a normal map.
+  gltf::PrimitiveShading shading = gltf::read_shading(model_, prim, positions.size(), file_, where);
+  if ((!shading.normals.empty() || mt.normal != kNoTexture) && !shading_on_) {
+    for (const Triangle& t : scene_.triangles) shading_.push_back(flat_shading(t));
+    shading_on_ = true;
+  }
   indices = gltf::triangulate(prim.mode, indices);
-  for (const glm::dmat4& world : worlds) add_triangles(indices, positions, world, material, uv[0], uv[1], colors);
+  for (const glm::dmat4& world : worlds) {
+    add_triangles(indices, positions, world, material, uv[0], uv[1], colors, shading);
+  }
 }
 
 void SceneBuilder::add_triangles(const std::vector<std::uint32_t>& indices, const std::vector<glm::vec3>& positions,
                                  const glm::dmat4& world, uint material, const std::vector<glm::vec2>& uv,
-                                 const std::vector<glm::vec2>& uv_set1, const std::vector<glm::vec4>& colors) {
+                                 const std::vector<glm::vec2>& uv_set1, const std::vector<glm::vec4>& colors,
+                                 const PrimitiveShading& shading) {
   for (std::size_t t = 0; t < indices.size(); t += 3) {
     glm::vec3 p[3];
     for (int k = 0; k < 3; ++k) p[k] = glm::vec3(world * glm::dvec4(positions[indices[t + k]], 1.0));
@@ -214,6 +227,21 @@ void SceneBuilder::add_triangles(const std::vector<std::uint32_t>& indices, cons
       continue;
     }
     scene_.add_triangle(p[0], p[1], p[2], material);
+    if (shading_on_) {
+      glm::vec2 corner_uv[3] = {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)};
+      // Tangents from the set the normal map reads (TEXCOORD_0 or TEXCOORD_1).
+      const std::vector<glm::vec2>& map_uv =
+          (material_textures_[material].tex_coord_sets >> kSlotNormal & 1u) ? uv_set1 : uv;
+      if (!map_uv.empty()) {
+        corner_uv[0] = map_uv[indices[t]], corner_uv[1] = map_uv[indices[t + 1]], corner_uv[2] = map_uv[indices[t + 2]];
+      }
+      TriangleShading s;
+      const bool mapped = material_textures_[material].normal != kNoTexture;
+      if (gltf::shade_triangle(shading, &indices[t], p, corner_uv, world, mapped, s)) {
+        scene_.triangles.back().flags |= kTriangleShadingNormals;
+      }
+      shading_.push_back(s);
+    }
     if (!attributes_on_) continue;
     TriangleAttributes a = no_triangle_attributes();
     if (!uv.empty()) a.uv0 = uv[indices[t]], a.uv1 = uv[indices[t + 1]], a.uv2 = uv[indices[t + 2]];
@@ -249,7 +277,7 @@ Scene load_gltf(const std::string& path, const std::string& scene_choice) {
   warn_unmodelled(model, path);
   const gltf::DrawCount count = gltf::count_draws(model, roots);
   const std::string skipped = gltf::skipped_text(count);
-  check_triangle_budget(count.triangles, count.overflowed, count.attributes, path);
+  check_triangle_budget(count.triangles, count.overflowed, count.attributes, path, count.shading);
   gltf::SceneBuilder builder(model, path);
   for (int root : roots) builder.add_tree(root);
   Scene scene = builder.take();

@@ -25,7 +25,8 @@ bool material_needs_attributes(const tinygltf::Model& model, int index) {
   bool specular_textures = specular != m.extensions.end() && (specular->second.Has("specularTexture") ||
                                                               specular->second.Has("specularColorTexture"));
   return m.pbrMetallicRoughness.baseColorTexture.index >= 0 || m.emissiveTexture.index >= 0 ||
-         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.alphaMode == "MASK" || specular_textures;
+         m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
+         m.alphaMode == "MASK" || specular_textures;
 }
 
 std::string scene_label(const tinygltf::Model& model, std::size_t s) {
@@ -135,6 +136,9 @@ DrawCount count_draws(const tinygltf::Model& model, const std::vector<int>& root
         per_mesh[m] += mode_triangles(prim.mode, model.accessors[std::size_t(accessor)].count);  // < 2^31 each
         if (material_needs_attributes(model, prim.material) || prim.attributes.count("COLOR_0"))
           count.attributes = true;
+        if (prim.attributes.count("NORMAL") ||
+            (prim.material >= 0 && model.materials[std::size_t(prim.material)].normalTexture.index >= 0))
+          count.shading = true;
       }
     }
     std::uint64_t placed = 0;  // the mesh's triangles once for every instance

@@ -28,6 +28,7 @@ struct DrawCount {
   std::uint64_t triangles = 0;
   bool overflowed = false;
   bool attributes = false;
+  bool shading = false;  // some primitive will need TriangleShading (NORMAL or a normal map)
   std::uint64_t skipped[4] = {0, 0, 0, 0};
 };
 DrawCount count_draws(const tinygltf::Model& model, const std::vector<int>& roots);
@@ -60,6 +61,27 @@ std::vector<glm::dmat4> instance_transforms(const tinygltf::Model& model, int no
 // scene 0, saying on stderr which when the file has several; every root node when it has none.
 std::vector<int> choose_scene(const tinygltf::Model& model, const std::vector<int>& parents, const std::string& request,
                               const std::string& file);
+
+// A primitive's NORMAL and TANGENT (gltf_shading.cpp), in the mesh's space; each empty when
+// the file has none. Either is VEC3 / VEC4 of FLOAT with one entry a vertex.
+struct PrimitiveShading {
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;  // xyz and the handedness w (+1 or -1)
+};
+PrimitiveShading read_shading(const tinygltf::Model& model, const tinygltf::Primitive& prim, std::size_t vertex_count,
+                              const std::string& file, const std::string& where);
+
+// A triangle's tangent made from its UVs (p: world corners, the tangent dP/du made orthogonal
+// to face_normal, the handedness that makes handedness * cross(n, t) run along -dP/dv); with
+// no UV area, any tangent orthogonal to the face normal. Normals: the face normal.
+TriangleShading tangents_from_uvs(const glm::vec3 p[3], const glm::vec2 uv[3], glm::vec3 face_normal);
+
+// The shading frame of the triangle of vertices `corner` (p: its world corners, uv: its
+// TEXCOORD_0) in world space: the primitive's normals by the inverse transpose of `world`
+// (turned to the front face), its tangents by `world` or made from the UVs. Returns whether
+// the triangle needs it: a vertex normal away from the face normal, or a normal map.
+bool shade_triangle(const PrimitiveShading& prim, const std::uint32_t corner[3], const glm::vec3 p[3],
+                    const glm::vec2 uv[3], const glm::dmat4& world, bool normal_mapped, TriangleShading& out);
 
 // Walks the chosen scene and fills a pt::Scene.
 class SceneBuilder {
@@ -97,7 +119,8 @@ class SceneBuilder {
   // (uv), TEXCOORD_1 (uv_set1) and COLOR_0 where not empty; those without area skipped.
   void add_triangles(const std::vector<std::uint32_t>& indices, const std::vector<glm::vec3>& positions,
                      const glm::dmat4& world, uint material, const std::vector<glm::vec2>& uv,
-                     const std::vector<glm::vec2>& uv_set1, const std::vector<glm::vec4>& colors);
+                     const std::vector<glm::vec2>& uv_set1, const std::vector<glm::vec4>& colors,
+                     const PrimitiveShading& shading);
 
   // Each glTF material used is added once; -1 is glTF's default material.
   uint material_index(int gltf_index);
@@ -110,6 +133,8 @@ class SceneBuilder {
   std::vector<MaterialTextures> material_textures_;  // parallel to scene_.materials
   std::vector<TriangleAttributes> attributes_;       // parallel to scene_.triangles once needed
   bool attributes_on_ = false;                       // a triangle has needed them
+  std::vector<TriangleShading> shading_;             // parallel to scene_.triangles once needed
+  bool shading_on_ = false;                          // a primitive has NORMAL or a normal map
 };
 
 }  // namespace pt::gltf

@@ -187,8 +187,12 @@ MaterialTextures TextureBuilder::material_textures(int material, bool specular_l
                        ? checked_float(file_, pbr.baseColorFactor[3], where + ".pbrMetallicRoughness.baseColorFactor[3]", 0.0, 1.0)
                        : 1.0f;
   }
-  if (m.normalTexture.index >= 0) {
-    warn_once(file_ + ": scene has normal textures; they are not modelled (the geometric normal is used)");
+  if (m.normalTexture.index >= 0) {  // a tangent-space normal map (common/kernel/shading_normal.glsl)
+    tinygltf::TextureInfo info;
+    info.index = m.normalTexture.index, info.texCoord = m.normalTexture.texCoord;
+    info.extensions = m.normalTexture.extensions;
+    t.normal = texture_slot(info, where + ".normalTexture", kSlotNormal, t, t.normal_s, t.normal_t);
+    t.normal_scale = checked_float(file_, m.normalTexture.scale, where + ".normalTexture.scale");
   }
   if (m.occlusionTexture.index >= 0) {
     warn_once(file_ + ": scene has occlusion textures; they are not used (the path tracer finds occlusion itself)");

@@ -30,6 +30,7 @@ uint Scene::add_material(const Material& m) {
 void Scene::add_triangle(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, uint material) {
   triangles.push_back(Triangle{p0, material, p1, kNoLight, p2, 0u});
   if (!triangle_attributes.empty()) triangle_attributes.push_back(no_triangle_attributes());
+  if (!triangle_shading.empty()) triangle_shading.push_back(flat_shading(triangles.back()));
 }
 
 void Scene::add_sphere(glm::vec3 center, float radius, uint material) {
@@ -144,13 +145,29 @@ bool uses_alpha_mask(const Scene& scene) {
   return false;
 }
 
+TriangleShading flat_shading(const Triangle& t) {
+  const glm::vec3 n = glm::normalize(glm::cross(t.p1 - t.p0, t.p2 - t.p0));
+  // Any unit vector orthogonal to n (Duff et al.'s branchless basis, as make_frame).
+  const float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z);
+  const glm::vec3 tangent(1.0f + sign * n.x * n.x * a, sign * n.x * n.y * a, -sign * n.x);
+  return TriangleShading{n, 0.0f, n, 0.0f, n, 0.0f, tangent, 1.0f, tangent, 1.0f, tangent, 1.0f};
+}
+
+bool uses_shading_normals(const Scene& scene) {
+  if (scene.triangle_shading.size() != scene.triangles.size()) return false;
+  for (const Triangle& t : scene.triangles) {
+    if (t.flags & kTriangleShadingNormals) return true;
+  }
+  return false;
+}
+
 MaterialTextures no_material_textures() {
   const glm::vec3 s(1.0f, 0.0f, 0.0f), t(0.0f, 1.0f, 0.0f);  // the identity transform
   MaterialTextures m{};  // every other field 0: no transform offsets, opaque, TEXCOORD_0
-  m.base_color_s = m.emissive_s = m.metallic_roughness_s = m.specular_s = m.specular_color_s = s;
-  m.base_color_t = m.emissive_t = m.metallic_roughness_t = m.specular_t = m.specular_color_t = t;
-  m.base_color = m.emissive = m.metallic_roughness = m.specular = m.specular_color = kNoTexture;
-  m.metallic_factor = m.roughness_factor = m.base_alpha = 1.0f;
+  m.base_color_s = m.emissive_s = m.metallic_roughness_s = m.specular_s = m.specular_color_s = m.normal_s = s;
+  m.base_color_t = m.emissive_t = m.metallic_roughness_t = m.specular_t = m.specular_color_t = m.normal_t = t;
+  m.base_color = m.emissive = m.metallic_roughness = m.specular = m.specular_color = m.normal = kNoTexture;
+  m.metallic_factor = m.roughness_factor = m.base_alpha = m.normal_scale = 1.0f;
   m.specular_color_factor = glm::vec3(1.0f);
   m.enabled = 1u;
   return m;

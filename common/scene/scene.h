@@ -61,6 +61,9 @@ struct Scene {
   std::vector<TriangleAttributes> triangle_attributes;
   std::vector<Texture> textures;  // the texture table
   std::vector<uint> texels;       // every texture's texels, 8-bit RGBA packed in a uint
+  // Shading normals (common/kernel/shading_normal.glsl): empty, or parallel to triangles
+  // (add_triangle keeps it so); read only for triangles flagged kTriangleShadingNormals.
+  std::vector<TriangleShading> triangle_shading;
 
   Bounds bounds() const;  // `region` when set, else the shapes' bounds
   // Appends a material and returns its index.
@@ -175,6 +178,11 @@ bool uses_alpha_mask(const Scene& scene);
 std::vector<MaterialTextures> neutral_material_textures(std::size_t materials);
 // The attributes of a triangle without TEXCOORD_0 or COLOR_0: uv (0, 0), colour 1.
 TriangleAttributes no_triangle_attributes();
+// The shading frame of a flat triangle: its face normal at every corner, a tangent
+// orthogonal to it (handedness 1). Whether the scene has shading normals: some triangle is
+// flagged kTriangleShadingNormals (kFeatureShadingNormals).
+TriangleShading flat_shading(const Triangle& t);
+bool uses_shading_normals(const Scene& scene);
 // Texel (x, y) of texture t, each channel in [0, 1] (as stored: sRGB channels not decoded).
 glm::vec4 texel_value(const Scene& scene, const Texture& t, uint x, uint y);
 

@@ -64,6 +64,7 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
   for (const Sphere& s : scene.spheres) add_material(scene.materials[s.material]);
   if (uses_textures(scene)) mask |= kFeatureTextures;
   if (uses_alpha_mask(scene)) mask |= kFeatureAlphaMask;
+  if (uses_shading_normals(scene)) mask |= kFeatureShadingNormals;
   for (const Light& l : scene.lights) {
     if (l.kind == kLightTriangle) mask |= kFeatureTriangleLights;
     if (l.kind == kLightSphere) mask |= kFeatureSphereLights;
@@ -78,12 +79,13 @@ std::string feature_names(uint mask) {
     uint bit;
     const char* name;
   };
-  const Name groups[3][10] = {
+  const Name groups[3][11] = {
       {{kFeatureTriangles, "triangles"}, {kFeatureSpheres, "spheres"}},
       {{kFeatureDiffuse, "diffuse"}, {kFeatureMirror, "mirror"}, {kFeatureConductor, "GGX conductor"},
        {kFeatureGlass, "glass"}, {kFeatureMixed, "mixed"}, {kFeatureDielectric, "glTF dielectric"},
        {kFeatureRoughGlass, "rough glass"},
-       {kFeatureTextures, "textures"}, {kFeatureAlphaMask, "alpha masks"}},
+       {kFeatureTextures, "textures"}, {kFeatureAlphaMask, "alpha masks"},
+       {kFeatureShadingNormals, "shading normals"}},
       {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
        {kFeaturePointLights, "punctual lights"}, {kFeatureSky, "sky"}}};
   std::string s;

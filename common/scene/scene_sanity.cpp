@@ -57,8 +57,10 @@ std::string camera_name(const SceneCamera& c) {
 
 void set_scene_memory_budget(std::uint64_t bytes) { memory_budget = bytes; }
 
-void check_triangle_budget(std::uint64_t triangles, bool overflowed, bool attributes, const std::string& file) {
-  const std::uint64_t per_triangle = kSceneBytesPerTriangle + (attributes ? kAttributeBytesPerTriangle : 0);
+void check_triangle_budget(std::uint64_t triangles, bool overflowed, bool attributes, const std::string& file,
+                           bool shading) {
+  const std::uint64_t per_triangle = kSceneBytesPerTriangle + (attributes ? kAttributeBytesPerTriangle : 0) +
+                                     (shading ? sizeof(TriangleShading) : 0);
   std::uint64_t bytes = 0;
   overflowed = overflowed || __builtin_mul_overflow(triangles, per_triangle, &bytes);
   if (overflowed || triangles > kBvhMaxTriangles) {

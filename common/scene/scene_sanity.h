@@ -49,7 +49,7 @@ inline constexpr double kMinRelativeExtent = 1.0 / 4096.0;
 // (40: box, centroid, index), the CPU backend's triangle copy (36) and wide BVH (36 + nodes),
 // rounded up to 192. Measured: peak RSS grows by 175-180 B per triangle (stage1, CPU backend,
 // 1-4 million triangles). Triangles with texture coordinates or vertex colours add their
-// TriangleAttributes (96).
+// TriangleAttributes (96); triangles with vertex normals or a normal map their TriangleShading (96).
 inline constexpr std::uint64_t kSceneBytesPerTriangle = 192;
 inline constexpr std::uint64_t kAttributeBytesPerTriangle = sizeof(TriangleAttributes);
 
@@ -61,7 +61,8 @@ void set_scene_memory_budget(std::uint64_t bytes);
 // Refuses (exit 3, naming both numbers) `triangles` triangles whose bytes (above) exceed the
 // budget, or more than the BVH takes (kBvhMaxTriangles), before the loader makes them; the
 // sums that give `triangles` must not have overflowed (overflowed: refused as too many).
-void check_triangle_budget(std::uint64_t triangles, bool overflowed, bool attributes, const std::string& file);
+void check_triangle_budget(std::uint64_t triangles, bool overflowed, bool attributes, const std::string& file,
+                           bool shading = false);
 
 // After a glTF file is loaded: a camera whose transform is degenerate (scale 0, not finite,
 // view and up axes parallel), geometry whose extent lies outside [kMinSceneExtent,

@@ -13,6 +13,7 @@
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "stage5_mis/kernels.h"
+#include "tests/support/shading_scenes.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
@@ -221,4 +222,27 @@ TEST_CASE("rough glass: CPU and GPU images of the same seed agree to rounding", 
     CHECK(agreeing_fraction(cpu.film, gpu.film, 1e-4) >= 0.999);
     CHECK(agreeing_fraction(cpu.film, gpu.film, 1e-2) == 1.0);
   }
+}
+
+// Shading normals (issue #46, docs/shading_normals.md) on both backends: the normal-mapped
+// plane under a sky and a point light, and the coarse sphere with smooth vertex normals.
+TEST_CASE("shading normals: CPU and GPU images of the same seed agree to rounding",
+          "[stage2][stage3][stage4][stage5][gpu][shading_normals]") {
+  Scene plane = bumpy_plane(1.0f, true, glm::vec3(0.8f, 0.6f, 0.4f));
+  plane.point_lights.push_back(make_point_light(glm::vec3(0.3f, 1.0f, 1.5f), glm::vec3(2.0f)));
+  build_light_table(plane);
+  for (const Scene* scene : {&plane}) {
+    for (const StageKernels& kernels : {stage2::kernels(), stage3::kernels(), stage4::kernels(), stage5::kernels()}) {
+      RenderSettings s = settings(32, 32, 4, 29);
+      s.sky = glm::vec3(0.5f, 1.0f, 2.0f);
+      RenderResult cpu = render_on("cpu", kernels, *scene, s);
+      RenderResult gpu = render_on("gpu", kernels, *scene, s);
+      INFO(kernels.name << ", " << scene->name);
+      CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.99);
+    }
+  }
+  Scene sphere = coarse_sphere(true);
+  RenderSettings s = settings(32, 32, 4, 30);
+  CHECK(agreeing_fraction(render_on("cpu", stage4::kernels(), sphere, s).film,
+                          render_on("gpu", stage4::kernels(), sphere, s).film) >= 0.99);
 }

@@ -39,6 +39,7 @@ const Case kCases[] = {
     {"gltf", glm::vec3(0.0f)},   // the Cornell box with glTF files' materials, below
     {PT_SOURCE_DIR "/tests/data/gltf/tex_seed.glb", glm::vec3(0.3f)},  // textures, vertex colours
     {PT_SOURCE_DIR "/tests/data/gltf/tex_mask.gltf", glm::vec3(0.3f)},  // alpha masks
+    {"builtin:every_feature", glm::vec3(0.1f)},  // shading normals, with everything else
 };
 
 // The Cornell box whose boxes have glTF files' materials: the short one a rough dielectric

@@ -44,6 +44,36 @@ class GltfWriter {
     return add("meshes", {{"primitives", Json::array({primitive})}});
   }
 
+  // A mesh of triangles as mesh() with further vertex attributes, each a list of floats with
+  // `components` per vertex: {"NORMAL", 3, normals}, {"TEXCOORD_0", 2, uv}, {"TANGENT", 4, t}.
+  struct Attribute {
+    std::string name;
+    int components;
+    std::vector<float> values;
+  };
+  int mesh_with(const std::vector<glm::vec3>& points, const std::vector<Attribute>& attributes, int material = -1) {
+    int m = mesh(points, material);
+    Json& primitive = doc_["meshes"][m]["primitives"][0];
+    for (const Attribute& a : attributes) {
+      static const char* kTypes[] = {"", "SCALAR", "VEC2", "VEC3", "VEC4"};
+      std::size_t offset = bin_.size(), bytes = a.values.size() * 4;
+      bin_.resize(offset + bytes);
+      std::memcpy(bin_.data() + offset, a.values.data(), bytes);
+      int view = add("bufferViews", {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}});
+      primitive["attributes"][a.name] = add("accessors", {{"bufferView", view},
+                                                          {"componentType", 5126},
+                                                          {"count", a.values.size() / std::size_t(a.components)},
+                                                          {"type", kTypes[a.components]}});
+    }
+    return m;
+  }
+
+  // A texture of the image at `uri` (relative to the file), default sampler.
+  int texture(const std::string& uri) {
+    int image = add("images", {{"uri", uri}});
+    return add("textures", {{"source", image}});
+  }
+
   // A quad p0 p1 p2 p3 (counter-clockwise seen from its front) as two triangles.
   int quad(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, int material = -1) {
     return mesh({p0, p1, p2, p0, p2, p3}, material);

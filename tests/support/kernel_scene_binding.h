@@ -12,6 +12,7 @@ inline void bind_scene(const ::pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
   material_textures = textured ? s.material_textures.data() : neutral.data();
   textures = textured ? s.textures.data() : nullptr;
   texels = textured ? s.texels.data() : nullptr;
+  triangle_shading = ::pt::uses_shading_normals(s) ? s.triangle_shading.data() : nullptr;
   triangles = s.triangles.data();
   spheres = s.spheres.data();
   materials = s.materials.data();

@@ -211,7 +211,7 @@ TEST_CASE("texture: the shaded material of a textured triangle", "[texture]") {
   CHECK(mixed.metallic == Approx(128.0 / 255.0).epsilon(1e-6));
   CHECK(mixed.alpha == Approx(std::pow(0.5 * 64.0 / 255.0, 2.0)).epsilon(1e-5));
   // A sphere's surface, or a kernel without textures: the material as it is.
-  kernel::Surface sphere(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), true, 0u, kernel::kNoTriangle, 0.0f, 0.0f);
+  kernel::Surface sphere(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), true, 0u, kernel::kNoTriangle, 0.0f, 0.0f, false);
   CHECK(kernel::surface_material(sphere).base_color == m.base_color);
 }
 
