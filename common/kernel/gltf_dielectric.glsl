@@ -66,11 +66,31 @@ LobeSample sample_dielectric(Material m, vec3 wo, vec2 u) {
   return LobeSample(wi, dielectric_pdf(m, wo, wi));
 }
 
+// The glass part of a material with transmission between 0 and 1 (docs/gltf_material.md,
+// "Partial transmission"): smooth glass (a delta) where the layer is smooth or the ior is
+// 1, as make_gltf_material makes glass, else rough glass (whose ior surface_material made
+// relative to the side the ray arrives from).
+uint glass_part(Material m) {
+  bool rough = has_feature(kFeatureRoughGlass) && m.alpha >= kGgxMirrorAlpha && m.ior != 1.0f;
+  return rough ? kMaterialRoughGlass : kMaterialGlass;
+}
+
 // Which lobe a glTF material scatters by (choose_lobe): the conductor with probability
 // metallic, else the dielectric, one non-delta lobe when its layer is rough; a smooth layer
-// is a delta, so then u also picks the layer's mirror (probability p) or the base.
+// is a delta, so then u also picks the layer's mirror (probability p) or the base. With a
+// transmission T between 0 and 1, the glass part takes the first T of what the conductor
+// leaves, and the dielectric the rest (u stretched back onto [0, 1) for the smooth layer's
+// choice). None of it looks at the direction that follows: each part's own pdf is the
+// density of its sampling (stage5's MIS weights).
 uint choose_gltf_lobe(Material m, vec3 wo, float u) {
   if (u < m.metallic) return m.alpha >= kGgxMirrorAlpha ? kMaterialConductor : kMaterialMirror;
+  if ((has_feature(kFeatureGlass) || has_feature(kFeatureRoughGlass)) && m.transmission > 0.0f) {
+    float v = (u - m.metallic) / (1.0f - m.metallic);
+    if (v < m.transmission) return glass_part(m);
+    if (m.alpha >= kGgxMirrorAlpha) return kMaterialDielectric;
+    float w = min((v - m.transmission) / (1.0f - m.transmission), kOneMinusEpsilon);
+    return w < layer_probability(m, wo) ? kLobeSmoothLayer : kLobeSmoothBase;
+  }
   if (m.alpha >= kGgxMirrorAlpha) return kMaterialDielectric;
   float v = (u - m.metallic) / (1.0f - m.metallic);
   return v < layer_probability(m, wo) ? kLobeSmoothLayer : kLobeSmoothBase;

@@ -19,7 +19,8 @@
 // conductor (a mirror at roughness 0, else GGX with alpha = roughness^2), metallic 0 is
 // diffuse, between the two it is mixed. Glass stays glass (transmission wins); rough glass
 // takes the roughness (below: at least kGgxMirrorAlpha). A glTF
-// material (kMaterialDielectric) stays one: its metallic mixes its two parts.
+// material (kMaterialDielectric) stays one: its metallic mixes its two parts, and its
+// roughness makes its glass part (transmission between 0 and 1) smooth or rough.
 Material with_metallic_roughness(Material m, float metallic, float roughness) {
   if (has_feature(kFeatureRoughGlass) && m.kind == kMaterialRoughGlass) {
     // Rough glass stays rough glass and reads only the roughness: where it is 0, alpha
@@ -100,14 +101,17 @@ Material textured_material(uint material, uint tri, float b1, float b2) {
 // with its textures and the vertex colour applied where the scene has them. (A kernel
 // with texture code may render a scene without: its backend binds neutral entries of
 // material_textures[], which name no texture and are not enabled.)
-// Rough glass's ior is made relative to the side the ray arrives from: inverted on a back face.
+// Rough glass's ior is made relative to the side the ray arrives from: inverted on a back
+// face; so is a glTF dielectric's whose transmission has a rough glass part (glass_part;
+// its dielectric part reads F0, made from the ior before this).
 Material surface_material(Surface surface) {
   if (has_feature(kFeatureRoughGlass)) {
     Material m = materials[surface.material];
     if (has_feature(kFeatureTextures) && surface.triangle != kNoTriangle) {
       m = textured_material(surface.material, surface.triangle, surface.b1, surface.b2);
     }
-    if (m.kind == kMaterialRoughGlass && !surface.front) m.ior = 1.0f / m.ior;
+    bool rough_part = m.kind == kMaterialDielectric && m.transmission > 0.0f && m.alpha >= kGgxMirrorAlpha;
+    if ((m.kind == kMaterialRoughGlass || rough_part) && !surface.front) m.ior = 1.0f / m.ior;
     return m;
   }
   if (!has_feature(kFeatureTextures) || surface.triangle == kNoTriangle) return materials[surface.material];

@@ -94,6 +94,10 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
   float t = checked_float(file, transmission,
                           where + ".extensions.KHR_materials_transmission.transmissionFactor", 0.0, 1.0);
   float eta = checked_float(file, ior, where + ".extensions.KHR_materials_ior.ior", 1.0);
+  auto tx = m.extensions.find("KHR_materials_transmission");
+  if (tx != m.extensions.end() && tx->second.Has("transmissionTexture"))
+    warn_once(file + ": KHR_materials_transmission's transmissionTexture is not read; transmissionFactor is used "
+                     "everywhere");
   // MASK cuts holes (gltf_textures.cpp reads its cutoff; intersect.glsl cut_out).
   if (m.alphaMode != "OPAQUE" && m.alphaMode != "MASK")
     warn_once(file + ": scene uses alphaMode " + printable(m.alphaMode) + "; surfaces are drawn opaque");

@@ -108,10 +108,18 @@ Material make_gltf_material(glm::vec3 base, float metallic, float roughness, flo
 
 Material make_gltf_pbr_material(const GltfPbr& p) {
   bool pure_metal = p.metallic >= 1.0f && !p.textured_metallic_roughness;
-  if (p.transmission > 0.0f || pure_metal || p.specular <= 0.0f) {
+  // Transmission between 0 and 1 (docs/gltf_material.md, "Partial transmission"): the glTF
+  // dielectric with its transmission, whose glass part choose_gltf_lobe picks with
+  // probability (1 - metallic) T; a metal ignores it (metallic 1: the conductor alone).
+  bool partial = p.transmission > 0.0f && p.transmission < 1.0f;
+  if (partial && pure_metal) {
+    return make_gltf_material(p.base, p.metallic, p.roughness, 0.0f, p.ior, p.emission, p.double_sided);
+  }
+  if ((p.transmission > 0.0f && !partial) || pure_metal || (p.specular <= 0.0f && !partial)) {
     return make_gltf_material(p.base, p.metallic, p.roughness, p.transmission, p.ior, p.emission, p.double_sided);
   }
   Material m = base_material(p.base, kMaterialDielectric);
+  m.transmission = p.transmission;
   m.metallic = p.metallic, m.alpha = p.roughness * p.roughness, m.ior = p.ior;
   float r = (p.ior - 1.0f) / (p.ior + 1.0f);
   m.specular_f0 = glm::min(r * r * p.specular_color, glm::vec3(1.0f));

@@ -114,9 +114,11 @@ struct GltfPbr {
   bool double_sided = false;                 // doubleSided
   bool textured_metallic_roughness = false;  // a metallic-roughness texture varies the two
 };
-// Transmission wins (smooth glass, as make_gltf_material). A pure metal (metallic 1, not
-// varied by a texture) is make_metal's conductor, a material without a specular layer
-// (specular 0) make_gltf_material's; every other one is kMaterialDielectric: the metal
+// Transmission 1 wins (glass, as make_gltf_material). A pure metal (metallic 1, not
+// varied by a texture) is make_metal's conductor, whatever a transmission below 1; a
+// material without a specular layer (specular 0) and without transmission
+// make_gltf_material's; every other one is kMaterialDielectric, whose `transmission`
+// between 0 and 1 adds glass (docs/gltf_material.md, "Partial transmission"): the metal
 // with probability metallic, else a GGX layer of F0 = min(((ior - 1) / (ior + 1))^2 x
 // specular_color, 1) and weight `specular` over a Lambert base.
 Material make_gltf_pbr_material(const GltfPbr& p);

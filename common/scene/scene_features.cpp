@@ -27,6 +27,9 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
       case kMaterialDielectric:  // the dielectric, and the conductor when metallic is above 0
         mask |= kFeatureDielectric | kFeatureDiffuse;
         if (m.metallic > 0.0f) mask |= m.alpha >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror;
+        // Transmission between 0 and 1: its glass part (choose_gltf_lobe's glass_part).
+        if (m.transmission > 0.0f)
+          mask |= m.alpha >= kGgxMirrorAlpha && m.ior != 1.0f ? kFeatureRoughGlass : kFeatureGlass;
         break;
       default:  // mixed: the diffuse lobe, and the conductor's (a mirror when alpha is 0)
         mask |= kFeatureMixed | kFeatureDiffuse | (m.alpha >= kGgxMirrorAlpha ? kFeatureConductor : kFeatureMirror);

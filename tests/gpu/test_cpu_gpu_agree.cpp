@@ -14,6 +14,8 @@
 #include "stage4_direct_indirect/kernels.h"
 #include "stage5_mis/kernels.h"
 #include "tests/support/shading_scenes.h"
+#include "tests/support/cli_run.h"
+#include "tests/support/gltf_writer.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
@@ -245,4 +247,39 @@ TEST_CASE("shading normals: CPU and GPU images of the same seed agree to roundin
   RenderSettings s = settings(32, 32, 4, 30);
   CHECK(agreeing_fraction(render_on("cpu", stage4::kernels(), sphere, s).film,
                           render_on("gpu", stage4::kernels(), sphere, s).film) >= 0.99);
+}
+
+// Transmission between 0 and 1 (issue #46, docs/gltf_material.md "Partial transmission") on
+// both backends, from a glTF file: a sheet whose left half is rough (its glass part rough
+// glass) and right half smooth, transmission 0.5 and metallic 0.2, each half one triangle
+// facing up and one facing down (seen from its back: the rough part's relative ior
+// inverted), the sky on both sides. Tolerances as rough glass's above (its refraction).
+TEST_CASE("transmission: CPU and GPU images of the same seed agree on a file with transmission 0.5",
+          "[stage2][stage3][stage4][stage5][gpu][transmission]") {
+  GltfWriter g;
+  auto material = [&](double roughness) {
+    return g.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.7, 0.5, 1.0}}, {"metallicFactor", 0.2},
+                                                 {"roughnessFactor", roughness}}},
+                       {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.5}}}}}});
+  };
+  int rough = material(0.4), smooth = material(0.0);
+  g.node({{"mesh", g.mesh({{-50, 0, 50}, {0, 0, 50}, {0, 0, -50}, {-50, 0, 50}, {-50, 0, -50}, {0, 0, -50}}, rough)}});
+  g.node({{"mesh", g.mesh({{0, 0, 50}, {50, 0, 50}, {50, 0, -50}, {0, 0, 50}, {0, 0, -50}, {50, 0, -50}}, smooth)}});
+  double half = -25.0 * M_PI / 180.0;  // at (0, 1, 0), pitched 50 degrees down
+  g.node({{"camera", g.perspective(60.0 * M_PI / 180.0)},
+          {"translation", {0, 1, 0}},
+          {"rotation", {std::sin(half), 0, 0, std::cos(half)}}});
+  Scene scene = load_gltf(g.write(pt_test::scratch_dir("pt_transmission_gpu").string() + "/half.gltf"));
+  REQUIRE(scene.materials.at(0).transmission == 0.5f);
+  for (const StageKernels& kernels : {stage2::kernels(), stage3::kernels(), stage4::kernels(), stage5::kernels()}) {
+    RenderSettings s = settings(48, 36, 4, 30);
+    s.sky = glm::vec3(0.5f, 1.0f, 2.0f);
+    RenderResult cpu = render_on("cpu", kernels, scene, s);
+    RenderResult gpu = render_on("gpu", kernels, scene, s);
+    INFO(kernels.name << ": within 1e-5 " << agreeing_fraction(cpu.film, gpu.film) << ", 1e-4 "
+                       << agreeing_fraction(cpu.film, gpu.film, 1e-4) << ", 1e-2 "
+                       << agreeing_fraction(cpu.film, gpu.film, 1e-2));
+    CHECK(agreeing_fraction(cpu.film, gpu.film, 1e-4) >= 0.999);
+    CHECK(agreeing_fraction(cpu.film, gpu.film, 1e-2) == 1.0);
+  }
 }

@@ -37,6 +37,7 @@ const Case kCases[] = {
     {PT_SOURCE_DIR "/scenes/glossy_glass.gltf", glm::vec3(0.2f)},
     {"mixed", glm::vec3(0.0f)},  // the Cornell box with mixed materials, below
     {"gltf", glm::vec3(0.0f)},   // the Cornell box with glTF files' materials, below
+    {"transmission", glm::vec3(0.0f)},  // its boxes with transmission between 0 and 1, below
     {PT_SOURCE_DIR "/tests/data/gltf/tex_seed.glb", glm::vec3(0.3f)},  // textures, vertex colours
     {PT_SOURCE_DIR "/tests/data/gltf/tex_mask.gltf", glm::vec3(0.3f)},  // alpha masks
     {"builtin:every_feature", glm::vec3(0.1f)},  // shading normals, with everything else
@@ -57,8 +58,24 @@ Scene gltf_case() {
   return scene;
 }
 
+// The Cornell box whose boxes have transmission between 0 and 1 (docs/gltf_material.md,
+// "Partial transmission"): the short one rough (its glass part rough glass), metallic 0.2,
+// the tall one smooth (smooth glass); the scene has no other glass, so only the mask's
+// glass part bits let the specialised kernels draw them.
+Scene transmission_case() {
+  Scene scene = make_builtin_scene("cornell");
+  GltfPbr rough, smooth;
+  rough.base = {0.9f, 0.6f, 0.4f}, rough.metallic = 0.2f, rough.roughness = 0.4f, rough.transmission = 0.5f;
+  smooth.base = {0.7f, 0.8f, 0.9f}, smooth.metallic = 0.0f, smooth.roughness = 0.0f, smooth.transmission = 0.3f;
+  uint r = scene.add_material(make_gltf_pbr_material(rough)), s = scene.add_material(make_gltf_pbr_material(smooth));
+  std::size_t n = scene.triangles.size();
+  for (std::size_t i = n - 24; i < n; i++) scene.triangles[i].material = i < n - 12 ? r : s;
+  return scene;
+}
+
 Scene load_case(const Case& c) {
   if (std::strcmp(c.scene, "gltf") == 0) return gltf_case();
+  if (std::strcmp(c.scene, "transmission") == 0) return transmission_case();
   if (std::strcmp(c.scene, "mixed") != 0) return load_scene(c.scene);
   Scene scene = make_builtin_scene("cornell");
   // The boxes (the last 24 triangles): the short one a mix of rough metal and diffuse,
