@@ -1,4 +1,4 @@
-# pt_add_stage(DIR [CPU_GROUPS N] [USES_LIGHT_TABLE] [MIS_PILOT] [LAB N]): one stage of the article,
+# pt_add_stage(DIR [CPU_GROUPS N] [USES_LIGHT_TABLE] [LAB N]): one stage of the article,
 # made from its folder's integrator.glsl and main.cpp. The build writes the rest:
 #   - DIR's GPU kernel: the backend's bindings, the integrator, the pixel loop and the GPU
 #     entry point, compiled to SPIR-V and embedded (specialised per scene at run time);
@@ -8,13 +8,12 @@
 #   - DIR/kernels.h: `stageK::kernels()`, the kernel in both forms (pt::StageKernels);
 #   - the kernel library pt_DIR (used by the program and the tests) and the program DIR.
 # USES_LIGHT_TABLE: the kernel reads the light table and the point lights (light sampling),
-# so they are uploaded. MIS_PILOT: the kernel sets its MIS weights from a pilot run before
-# the render (stage5; common/render/mis_pilot.h). LAB N: lab N asks the student for this stage's integrator
+# so they are uploaded. LAB N: lab N asks the student for this stage's integrator
 # (cmake/Labs.cmake): its build compiles labs/labN.glsl in its place.
 # Tests make kernels that are not stages the same way: INTEGRATOR FILE (instead of
 # DIR/integrator.glsl), NAMESPACE NS (instead of DIR's stageK) and NO_PROGRAM.
 function(pt_add_stage DIR)
-  cmake_parse_arguments(ARG "USES_LIGHT_TABLE;MIS_PILOT;NO_PROGRAM" "CPU_GROUPS;LAB;INTEGRATOR;NAMESPACE" "" ${ARGN})
+  cmake_parse_arguments(ARG "USES_LIGHT_TABLE;NO_PROGRAM" "CPU_GROUPS;LAB;INTEGRATOR;NAMESPACE" "" ${ARGN})
   if(NOT DEFINED ARG_CPU_GROUPS OR PT_CPU_GENERAL_ONLY)
     set(ARG_CPU_GROUPS 0)
   endif()
@@ -80,11 +79,6 @@ namespace ${ns}::v${i} {
   else()
     set(uses_lights false)
   endif()
-  if(ARG_MIS_PILOT)
-    set(mis_pilot true)
-  else()
-    set(mis_pilot false)
-  endif()
   file(CONFIGURE OUTPUT ${out}/kernels.h CONTENT
 "// Written by cmake/PtStage.cmake: ${DIR}'s kernel in both forms (C++ for the CPU, SPIR-V for Vulkan).
 #pragma once
@@ -105,7 +99,7 @@ namespace ${ns} {
 ${declarations}
 pt::StageKernels kernels() {
   static const pt::CpuKernel cpu[] = {${table}};
-  return pt::StageKernels{\"${DIR}\", cpu, ${DIR}_kernel_spirv, ${uses_lights}, ${mis_pilot}};
+  return pt::StageKernels{\"${DIR}\", cpu, ${DIR}_kernel_spirv, ${uses_lights}};
 }
 }  // namespace ${ns}
 ")

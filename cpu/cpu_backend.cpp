@@ -39,7 +39,6 @@ class CpuBackend : public Backend {
 
   std::string kind() const override { return "cpu"; }
   std::string device_name() const override { return std::to_string(threads_) + " threads"; }
-  bool mis_pilot() const override { return kernels_.mis_pilot; }
 
   void set_scene(const Scene& scene, uint features, const Bvh* bvh) override {
     kernel_ = cpu_kernel_for(kernels_, features);

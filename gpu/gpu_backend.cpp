@@ -64,7 +64,6 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
 
   std::string kind() const override { return "gpu"; }
   std::string device_name() const override { return context_.device_name(); }
-  bool mis_pilot() const override { return kernels_.mis_pilot; }
 
   void set_scene(const Scene& scene, uint features, const Bvh* bvh) override {
     one_sample_ = false;  // a new scene may fit the loop budget again

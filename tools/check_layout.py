@@ -16,9 +16,14 @@ record that names the stage and its kernels, each must read as every other does 
 steps the reader follows in docs/README.md, "What main.cpp is"). They are written out in
 each stage on purpose, for the reader; this keeps the five copies from drifting apart.
 
+And the step past the article stays one step (issue #48): stage5_mis/integrator.glsl is
+stage4's plus MIS, `diff` of the two at most MAX_STEP_LINES changed lines, and a stage's
+own machinery stays in its folder: no file in common/, cpu/ or gpu/ names stage5's pilot.
+
   tools/check_layout.py [--root DIR]   lists each problem; exit 1 if any
 """
 import argparse
+import difflib
 import os
 import re
 import sys
@@ -140,11 +145,41 @@ def check_stages(root):
     return problems
 
 
+# The step stage4 -> stage5 (the lines `diff` marks with < or >), and the word that stage5's
+# own machinery, its former MIS pilot, must not leave in the shared rooms.
+STEP = ("stage4_direct_indirect/integrator.glsl", "stage5_mis/integrator.glsl")
+MAX_STEP_LINES = 60
+SHARED_ROOMS = ("common", "cpu", "gpu")
+
+
+def check_step(root):
+    problems = []
+    paths = [os.path.join(root, p) for p in STEP]
+    if all(os.path.exists(p) for p in paths):
+        texts = []
+        for p in paths:
+            with open(p, encoding="utf-8", errors="replace") as fh:
+                texts.append(fh.read().splitlines())
+        changed = sum(1 for line in difflib.ndiff(*texts) if line[:2] in ("- ", "+ "))
+        if changed > MAX_STEP_LINES:
+            problems.append(f"{STEP[1]}: {changed} lines differ from {STEP[0]} (at most {MAX_STEP_LINES}): "
+                            "stage5 is stage4 plus MIS, one diff a reader can follow")
+    for room in SHARED_ROOMS:
+        for folder, _, names in os.walk(os.path.join(root, room)):
+            for name in names:
+                path = os.path.join(folder, name)
+                with open(path, encoding="utf-8", errors="replace") as fh:
+                    if re.search(r"pilot", fh.read(), re.IGNORECASE):
+                        problems.append(f"{os.path.relpath(path, root)}: names the MIS pilot, stage5's own "
+                                        "machinery: it belongs in stage5_mis/, behind a generic hook")
+    return problems
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     args = parser.parse_args()
-    problems = check(args.root) + check_stages(args.root)
+    problems = check(args.root) + check_stages(args.root) + check_step(args.root)
     for p in problems:
         print("error: " + p)
     print(f"check_layout: {len(problems)} problem(s)" if problems

@@ -97,6 +97,18 @@ def main():
         r = run(extra)
         failed += verdict(r.returncode == 1 and "stage2_montecarlo/cpu_kernel.cpp: a stage folder holds only" in r.stdout,
                           "a stage folder with a file of the build's is caught", r)
+        step = os.path.join(tmp, "step")
+        tree(step, dict(ALLOWED, **{"stage4_direct_indirect/integrator.glsl": [], "stage5_mis/integrator.glsl": [], "common/render/render.cpp": []}))
+        r = run(step)
+        failed += verdict(r.returncode == 0, "stage5's integrator as stage4's passes", r)
+        with open(os.path.join(step, "stage5_mis/integrator.glsl"), "a", encoding="utf-8") as fh:
+            fh.write("".join(f"float idea{i}();\n" for i in range(61)))
+        with open(os.path.join(step, "common/render/render.cpp"), "a", encoding="utf-8") as fh:
+            fh.write("// runs stage5's MIS pilot\n")
+        r = run(step)
+        failed += verdict(r.returncode == 1 and "stage5_mis/integrator.glsl: 61 lines differ" in r.stdout
+                          and "common/render/render.cpp: names the MIS pilot" in r.stdout,
+                          "a stage5 far from stage4 plus MIS, and a pilot in common/, are caught", r)
     r = run(os.path.dirname(HERE))
     failed += verdict(r.returncode == 0, "the project's tree follows the arrows", r)
     print(f"check_layout test: {failed} failed")

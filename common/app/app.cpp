@@ -66,7 +66,6 @@ FramePlan frame_plan(const Options& o, const Scene* scene, bool gpu) {
 
 std::optional<Options> read_options(int argc, char** argv, const Stage& stage) {
   StageInfo info = stage.info;
-  info.has_mis = stage.kernels.mis_pilot;  // --mis where the kernel weighs its MIS by a pilot
   std::optional<Options> options = parse_options(argc, argv, info);
   if (!options) return options;
   install_interrupt_handlers();

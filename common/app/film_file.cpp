@@ -175,7 +175,6 @@ FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSe
                 double(s.sky.x), double(s.sky.y), double(s.sky.z), s.roulette == kRouletteThroughput ? "throughput" : "fixed",
                 unsigned(s.depth_cap), s.sampler == kSamplerIndependent ? "independent" : "sobol", hex64(h).c_str());
   id.options = text;
-  if (!s.mis_pilot) id.options += ", mis power";  // stage5 without its pilot (the others never run one)
   id.seed = s.seed;
   return id;
 }

@@ -123,18 +123,10 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
       ->type_name("[PATH]");
   std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
   if (stage.has_roulette) {
-    app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight; stage5: its square root, glass's 1/eta^2 taken out)")
+    app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
         ->capture_default_str()->check(CLI::IsMember({"fixed", "throughput"}));
     app.add_option("--depth-cap", o.render.depth_cap, "bounces after which a path is stopped and counted (a safety net)")
         ->capture_default_str()->check(CLI::Range(1u, 1000000u));
-  }
-
-  std::string mis = "pilot";
-  if (stage.has_mis) {
-    app.add_option("--mis", mis,
-                   "MIS weights: pilot (the power heuristic with each strategy counted by the inverse of its error, "
-                   "measured by a small pilot render first) or power (Veach's power heuristic); both unbiased")
-        ->capture_default_str()->check(CLI::IsMember({"pilot", "power"}));
   }
 
   try {
@@ -162,7 +154,6 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     o.render.spp = 0xffffffffu;
   }
   o.render.roulette = rr == "throughput" ? kRouletteThroughput : kRouletteFixed;
-  o.render.mis_pilot = mis == "pilot";
   o.render.accel = accel == "none" ? kAccelNone : kAccelBvh;
   o.render.sampler = sampler == "independent" ? kSamplerIndependent : kSamplerSobol;
   if (!std::isfinite(o.exposure)) throw Error(kExitBadOption, "--exposure must be a finite number of stops");

@@ -20,7 +20,6 @@ struct StageInfo {
   std::uint32_t default_roulette = 0;  // kRouletteFixed (the article) or kRouletteThroughput
   bool sees_point_lights = false;   // light sampling (stage4) sees delta lights
   bool every_surface_emits = false; // stage1: surfaces show their base colour, so no scene is black
-  bool has_mis = false;             // --mis pilot|power: read_options sets it from StageKernels::mis_pilot
 };
 
 struct Options {

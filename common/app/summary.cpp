@@ -46,7 +46,6 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
   if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
   if (!tags.empty()) s += " " + tags;
   if (r.bvh) s += " " + r.bvh->summary();
-  if (r.mis.width > 0) s += " " + mis_summary(r.mis);
   return s;
 }
 

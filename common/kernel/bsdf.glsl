@@ -209,7 +209,7 @@ vec3 light_sample_normal(uint lobe, vec3 n) {
   return n;
 }
 
-// What a non-delta bounce to wi changes the path's radiance scale by (stage5's eta_scale).
+// What a non-delta bounce to wi changes the path's radiance scale by (roulette_weight's eta_scale).
 float lobe_eta2(uint lobe, Material m, vec3 wi) {
   if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return rough_glass_eta2(m, wi);
   return 1.0f;

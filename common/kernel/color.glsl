@@ -1,5 +1,5 @@
-// Rec. 709 luminance of linear RGB: what the film's variance (render_pixel.glsl) and stage5's
-// pilot (mis_pilot.glsl) measure a colour by. Not in the article: machinery of the estimators'
+// Rec. 709 luminance of linear RGB: what the film's variance (render_pixel.glsl) measures a
+// colour by. Not in the article: machinery of the estimators'
 // error. Written in the GLSL/C++ subset: both backends run this file.
 #ifndef PT_COLOR_GLSL
 #define PT_COLOR_GLSL

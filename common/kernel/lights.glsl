@@ -264,7 +264,8 @@ float sky_light_pdf(vec3 n, vec3 wi) {
 const uint kMaxLightsTried = 16u;
 
 // Whether a ray could find emission: false only where tracing it for certain finds none
-// (stage5_mis, beyond the article: a path that Russian roulette has ended still counts the
+// (beyond the article, for a roulette drawn after the emission a ray finds, which no stage
+// runs since issue #48: a path that Russian roulette has ended would still count the
 // emission its last ray finds, and most such rays find none). That is so when the sky is
 // black, no hole of an alpha mask can move the ray's origin (intersect_scene), and the ray
 // meets none of the emitters: every surface that emits is in the light table

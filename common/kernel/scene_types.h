@@ -216,10 +216,6 @@ struct FrameParams {
   float scene_radius;      // the radius of the scene's bounding sphere (ray offsets scale with it)
   uint accel;              // kAccel*: the BVH or every triangle (the same hits)
   uint sampler_kind;       // kSampler*: which numbers feed the estimator (sampler.glsl)
-  float mis_diffuse;       // stage5: how many times its pdf the light strategy counts at a
-  float mis_glossy;        // diffuse or a glossy vertex in the MIS weights (1: Veach's power heuristic)
-  uint pilot;              // stage5's pilot passes: 0 renders; 1 + class: MIS statistics of that lobe class
-  uint pad0;
 };
 
 // One entry of the texture table: an image in texels[] (8-bit RGBA, R in the low byte,
@@ -340,12 +336,11 @@ static_assert(offsetof(PointLight, intensity) == 16 && offsetof(PointLight, dire
 static_assert(sizeof(Light) == 16);
 static_assert(sizeof(Camera) == 64);
 static_assert(offsetof(Camera, forward) == 16 && offsetof(Camera, right) == 32 && offsetof(Camera, up) == 48);
-static_assert(sizeof(FrameParams) == 160);
+static_assert(sizeof(FrameParams) == 144);
 static_assert(offsetof(FrameParams, sky) == 64 && offsetof(FrameParams, width) == 80);
 static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParams, seed) == 112);
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);
 static_assert(offsetof(FrameParams, accel) == 136 && offsetof(FrameParams, sampler_kind) == 140);
-static_assert(offsetof(FrameParams, mis_diffuse) == 144 && offsetof(FrameParams, pilot) == 152);
 static_assert(sizeof(Texture) == 32);
 static_assert(sizeof(MaterialTextures) == 224 && offsetof(MaterialTextures, emissive_s) == 32);
 static_assert(offsetof(MaterialTextures, base_alpha) == 96 && offsetof(MaterialTextures, tex_coord_sets) == 104);

@@ -56,7 +56,6 @@ struct StageKernels {
                                          // copy alone is the general kernel
   std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
   bool uses_light_table = false;         // reads lights[] and point_lights[] (stage4)
-  bool mis_pilot = false;                // weighs its MIS by a pilot (stage5: mis_pilot.h)
 };
 
 // A Vulkan device as --backend auto weighs it (common/app/app.h, Backends::gpu_devices):
@@ -88,9 +87,6 @@ class Backend {
   // Renders params.sample_count samples of every pixel into out (width * height values of
   // render_pixel(): rgb sum, squared-luminance sum).
   virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
-  // Whether the stage's kernel sets its MIS weights from a pilot (StageKernels::mis_pilot):
-  // render() runs it before the first pass.
-  virtual bool mis_pilot() const { return false; }
 };
 
 }  // namespace pt

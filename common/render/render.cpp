@@ -71,14 +71,13 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   p.light_count = uint(scene.lights.size());
   p.accel = s.accel == kAccelBvh && !scene.triangles.empty() ? kAccelBvh : kAccelNone;
   p.sky_pick = sky_pick_probability(scene, s.sky);
-  p.mis_diffuse = p.mis_glossy = 1.0f;  // Veach's power heuristic, until a pilot says otherwise
   Bounds b = scene.bounds();
   p.scene_radius = b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f);
   return p;
 }
 
 RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& s, const RenderHooks& h) {
-  RenderResult result = h.resume ? *h.resume : RenderResult{Film(s.width, s.height), 0.0, 0.0, {}, 0, {}, {}, {}};
+  RenderResult result = h.resume ? *h.resume : RenderResult{Film(s.width, s.height), 0.0, 0.0, {}, 0, {}, {}};
   result.device_error.clear();
   const double seconds_before = result.seconds;
   FrameParams params = make_frame_params(scene, s);
@@ -97,13 +96,6 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
   const uint features = s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky);
   try {
     backend.set_scene(scene, features, bvh);
-    // stage5: the MIS weights' factors, from a pilot of their own samples (mis_pilot.h). A
-    // resumed render or a part runs the same pilot, so it renders the same samples.
-    if (backend.mis_pilot() && s.mis_pilot) {
-      const bool glossy = (features & (kFeatureConductor | kFeatureMixed | kFeatureDielectric)) != 0u;
-      result.mis = run_mis_pilot(backend, params, glossy, pass);
-      params.mis_diffuse = result.mis.diffuse, params.mis_glossy = result.mis.glossy;
-    }
   } catch (const Error& e) {  // a device that cannot hold the scene: nothing rendered yet
     if (e.code() != kExitNoDevice) throw;
     result.device_error = e.what();

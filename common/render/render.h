@@ -12,7 +12,6 @@
 
 #include "common/render/backend.h"
 #include "common/render/film.h"
-#include "common/render/mis_pilot.h"
 #include "common/scene/bvh.h"
 
 namespace pt {
@@ -39,8 +38,6 @@ struct RenderSettings {
                                             // triangles are searched; the same image
   std::uint32_t sampler = kSamplerSobol;    // kSamplerSobol or kSamplerIndependent (--sampler):
                                             // where the random numbers come from
-  bool mis_pilot = true;                    // stage5 (--mis): its MIS weights' factors from a
-                                            // pilot (mis_pilot.h), else Veach's power heuristic
 };
 
 // How a render is watched and resumed; none of it changes the image.
@@ -80,7 +77,6 @@ struct RenderResult {
                              // driver cut a pass short (a wrong pass is never added): the
                              // film has the samples done before it
   std::optional<BvhStats> bvh;  // the BVH this render searched (none: --accel none or no triangles)
-  MisScales mis;                // stage5: the factors its pilot chose (mis_pilot.h)
 };
 
 // Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's

@@ -6,7 +6,6 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "common/render/mis_pilot.h"
 #include "common/scene/scene_loading.h"
 #include "stage1_raycast/kernels.h"
 #include "stage2_montecarlo/kernels.h"
@@ -75,20 +74,6 @@ TEST_CASE("stage5: CPU and GPU images of the same seed agree to rounding under p
   RenderSettings s = settings(48, 36, 4, 25);
   s.roulette = kRouletteThroughput;
   check_agreement(stage5::kernels(), {"point_floor", "spot_floor", "sun_floor"}, s);
-}
-
-// The pilot's factors (common/render/mis_pilot.h) are powers of two, so that the two backends'
-// pilots, whose sums differ in their last bits, choose the same weights.
-TEST_CASE("stage5: the MIS pilot chooses the same factors on the CPU and the GPU", "[stage5][gpu]") {
-  for (const char* name : {"floor_large_light", "floor_small_light", "furnace", "cornell", "cornell_glossy"}) {
-    Scene scene = make_builtin_scene(name);
-    RenderSettings s = settings(48, 36, 1, 26);
-    RenderResult cpu = render_on("cpu", stage5::kernels(), scene, s);
-    RenderResult gpu = render_on("gpu", stage5::kernels(), scene, s);
-    INFO(name << ": CPU " << mis_summary(cpu.mis) << ", GPU " << mis_summary(gpu.mis));
-    CHECK(cpu.mis.diffuse == gpu.mis.diffuse);
-    CHECK(cpu.mis.glossy == gpu.mis.glossy);
-  }
 }
 
 // The GPU reads the triangles from a uniform copy when they fit (gpu_backend.cpp, 1364 on

@@ -25,5 +25,4 @@ inline void bind_scene(const ::pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
   params.light_count = uint(s.lights.size());
   params.sky = sky;
   params.sky_pick = ::pt::sky_pick_probability(s, sky);
-  params.mis_diffuse = params.mis_glossy = 1.0f;  // stage5: the power heuristic itself
 }
