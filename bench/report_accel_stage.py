@@ -19,6 +19,7 @@ def stage_section(out_dir, read_keys):
     if not rows:
         return []
     before = read_rows(os.path.join(out_dir, "accel_stage_before.csv"))
+    round1 = read_rows(os.path.join(out_dir, "accel_stage_round1.csv"))
     run = read_keys(os.path.join(out_dir, "accel_stage_run.txt"))
     keys = sorted({(s, v) for (s, v, _) in rows}, key=lambda k: (k[0], ["inside", "outside", "grazing"].index(k[1])))
 
@@ -35,28 +36,34 @@ def stage_section(out_dir, read_keys):
           "at %s, stage4 at half that side, 16 spp. The rays are the stage's own: its camera rays as "
           "render_pixel() makes them (sampler, jitter, camera_ray, in the render's order), and for stage4 "
           "every ray a recording copy of its kernel traced (camera, bounce, shadow: the nearest hit closer "
-          "than the light point, as occluded() asks). *render*: render() handed the BVH (the backend's "
-          "set_scene with the wide tree's collapse, the passes, the film), *+ build*: render() building the "
-          "BVH too; *walk*: the CPU's wide BVH alone on the same rays; Embree: rtcIntersect1 on them; *before "
-          "the change*: accel_stage_before.csv, the section by the build before the change, where one was kept "
-          "(issue 50's: run side by side with this one)." % (
+          "than the light point, as occluded() asks). *render*: render() handed the BVH in both its forms, the "
+          "binary tree and the CPU's 8-wide one (counted as part of the build: the backend's set_scene, the "
+          "passes, the film), *collapsing*: render() handed the binary tree only, its set_scene collapsing it "
+          "(what *render* was before issue 50's second round), *+ build*: render() building the BVH too; *walk*: the CPU's wide BVH alone on the same rays; Embree: rtcIntersect1 on them; *round "
+          "one*: accel_stage_round1.csv, the section by the build after issue 50's first round (its *render* "
+          "collapsed in set_scene), run side by side with this one; *before issue 50*: accel_stage_before.csv, "
+          "the section by the build before either round, run beside round one's." % (
               run.get("command", "pt_bench --section stage"), run.get("date", "?"), run.get("load_before", "?"),
               run.get("load_after", "?"), run.get("machine", "machine not recorded"), run.get("threads", "?"), run.get("embree", "Embree"),
               run.get("rounds", "?"), "%sx%s" % (rows[keys[0] + ("render_no_build",)]["width"],
                                                    rows[keys[0] + ("render_no_build",)]["height"])), ""]
-    md += ["| stage | view | rays | render M rays/s | render / Embree | before the change | + build / Embree | "
-           "walk / Embree | Embree M rays/s | target |", "|---|---|---|---|---|---|---|---|---|---|"]
+    md += ["| stage | view | rays | render M rays/s | render / Embree | collapsing / Embree | round one | before issue 50 "
+           "| + build / Embree | walk / Embree | round one's walk | Embree M rays/s | target |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for s, v in keys:
         walk = [q for (s2, v2, q) in rows if (s2, v2) == (s, v) and q.startswith("walk_")]
         ratios = ", ".join("%s %s" % (q[5:], f(rows, s, v, q, "ratio_to_embree", "%.2f")) for q in walk)
         emb = ", ".join("%s %s" % (q[5:], f(rows, s, v, "embree_" + q[5:], "mrays_per_cpu_s", "%.2f")) for q in walk)
         ratio = rows[(s, v, "render_no_build")]["ratio_to_embree"]
         met = "met" if ratio and float(ratio) >= STAGE_TARGETS[s] else "missed"
-        md.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s %.1f: **%s** |" % (
+        ratios1 = ", ".join("%s %s" % (q[5:], f(round1, s, v, q, "ratio_to_embree", "%.2f")) for q in walk)
+        md.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s %.1f: **%s** |" % (
             s, v, rows[(s, v, "render_no_build")]["rays"], f(rows, s, v, "render_no_build", "mrays_per_cpu_s"),
             f(rows, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
+            f(rows, s, v, "render_collapsing", "ratio_to_embree", "%.2f"),
+            f(round1, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
             f(before, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
-            f(rows, s, v, "render_with_build", "ratio_to_embree", "%.2f"), ratios, emb, s, STAGE_TARGETS[s], met))
+            f(rows, s, v, "render_with_build", "ratio_to_embree", "%.2f"), ratios, ratios1, emb, s, STAGE_TARGETS[s], met))
     md += ["", "A sample's cost, ns of CPU time per sample (the render's CPU time over its samples; *rest*: the "
            "render's passes less the camera rays and the walk alone on the same rays, i.e. shading, the sampler's "
            "other numbers, the pixel loop, and the walk's cost beyond its own timing):", "",

@@ -69,11 +69,14 @@ class CpuBackend : public Backend {
     wide_.reset();
     if (bvh && !bvh->nodes.empty()) {
       scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();
-      // The CPU walks the tree collapsed to 8 children and leaf blocks (wide_bvh.h).
-      wide_ = std::make_unique<WideBvh>(build_wide_bvh(*bvh, scene.triangles));
-      scene_.wide_bvh = wide_.get();
+      // The CPU walks the tree collapsed to 8 children and leaf blocks (wide_bvh.h): the
+      // one handed for this tree (give_cpu_wide_bvh), else made here.
+      if (bvh != given_for_ || !given_wide_) wide_ = std::make_unique<WideBvh>(build_wide_bvh(*bvh, scene.triangles));
+      scene_.wide_bvh = wide_ ? wide_.get() : given_wide_;
     }
   }
+
+  void give_wide_bvh(const Bvh* bvh, const WideBvh* wide) { given_for_ = bvh, given_wide_ = wide; }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     Clock::time_point start = Clock::now();
@@ -123,6 +126,8 @@ class CpuBackend : public Backend {
   std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test, once needed
   std::unique_ptr<SphereSoa> sphere_soa_;  // the spheres as arrays for theirs
   std::unique_ptr<WideBvh> wide_;     // the BVH collapsed for the SIMD walk, or none
+  const Bvh* given_for_ = nullptr;    // give_cpu_wide_bvh(): a tree and its wide form
+  const WideBvh* given_wide_ = nullptr;
   std::vector<MaterialTextures> neutral_;  // material_textures[] of a scene without textures
 };
 
@@ -130,6 +135,10 @@ class CpuBackend : public Backend {
 
 std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads) {
   return std::make_unique<CpuBackend>(kernels, threads);
+}
+
+void give_cpu_wide_bvh(Backend& backend, const Bvh* bvh, const WideBvh* wide) {
+  if (auto* cpu = dynamic_cast<CpuBackend*>(&backend)) cpu->give_wide_bvh(bvh, wide);
 }
 
 }  // namespace pt
