@@ -32,6 +32,10 @@ struct Config {
   int accel_max_level = 8;           // the largest icosphere: 20 * 4^level triangles
   double accel_seconds = 0.5;        // per method, scene and ray set
   double accel_brute_limit = 3.0;    // the brute force skips a count it would spend longer on
+  // The stage section (issue 50, accel_stage.cpp): stage1 at stage_size^2 x 16 spp, stage4 at
+  // half that size, each `stage_rounds` times alternating with Embree on the same rays.
+  int stage_size = 256;
+  int stage_rounds = 3;
   std::string command;               // the command line, for the record (accel_run.txt)
 };
 
@@ -85,6 +89,7 @@ ErrorMetrics compare_images(const std::vector<float>& image, const Reference& re
 void run_error_study(const std::vector<Run>& runs, const Config& config);
 void run_speed(const Config& config);
 void run_accel(const Config& config);
+void run_accel_stage(const Config& config);
 void run_specialisation(const std::vector<std::string>& stages, const std::vector<std::string>& backends,
                         const Config& config);
 

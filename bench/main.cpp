@@ -2,7 +2,9 @@
 // kernels (issue 8). Sections: `error` (error against time per scene x stage x backend,
 // docs/results/convergence.csv), `speed` (rays per second, speed.csv), `special`
 // (specialised against general kernels, specialisation.csv), `accel` (issue 17: rays per
-// second against the triangle count, brute force, BVH and Embree, accel.csv). bench/run.sh
+// second against the triangle count, brute force, BVH and Embree, accel.csv), `stage` (issue
+// 50: stage programs on the 1.3 M-triangle mesh beside Embree on their rays, accel_stage.csv,
+// not in the default list). bench/run.sh
 // runs them all and makes the plots and docs/results.md.
 #include <cstdio>
 #include <fstream>
@@ -74,7 +76,7 @@ int main(int argc, char** argv) {
     app.add_option("--scene", scenes, "only these scenes of the run list (repeatable)");
     app.add_option("--stage", stages, "only these stages: 1..5 or program names (repeatable)");
     app.add_option("--backend", backends, "only these backends: cpu, gpu (repeatable)");
-    app.add_option("--section", sections, "error, speed, special, accel (repeatable)")->capture_default_str();
+    app.add_option("--section", sections, "error, speed, special, accel, stage (repeatable)")->capture_default_str();
     app.add_option("--size", config.size, "image width and height")->capture_default_str()->check(CLI::Range(1, 4096));
     app.add_option("--seconds", config.seconds, "per run: stop after the first checkpoint that takes this long")
         ->capture_default_str()->check(CLI::PositiveNumber);
@@ -97,6 +99,10 @@ int main(int argc, char** argv) {
     app.add_option("--accel-brute-limit", config.accel_brute_limit,
                    "accel: the brute force skips a triangle count it would spend longer on (seconds)")
         ->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_option("--stage-size", config.stage_size, "stage: stage1's image side (stage4: half of it)")
+        ->capture_default_str()->check(CLI::Range(2, 4096));
+    app.add_option("--stage-rounds", config.stage_rounds, "stage: alternating rounds per measurement")
+        ->capture_default_str()->check(CLI::Range(1, 100));
     try {
       app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -114,8 +120,8 @@ int main(int argc, char** argv) {
     }
     std::set<std::string> section_set(sections.begin(), sections.end());
     for (const std::string& s : section_set) {
-      if (s != "error" && s != "speed" && s != "special" && s != "accel") {
-        throw pt::Error(pt::kExitBadOption, "unknown section '" + s + "'; use error, speed, special or accel");
+      if (s != "error" && s != "speed" && s != "special" && s != "accel" && s != "stage") {
+        throw pt::Error(pt::kExitBadOption, "unknown section '" + s + "'; use error, speed, special, accel or stage");
       }
     }
     if (section_set.count("error")) {
@@ -139,6 +145,13 @@ int main(int argc, char** argv) {
       for (int i = 0; i < argc; i++) config.command += (i ? " " : "") + std::string(argv[i]);
       std::printf("== rays per second against the triangle count (issue 17)\n");
       pt::bench::run_accel(config);
+    }
+    if (section_set.count("stage")) {
+      if (config.command.empty()) {
+        for (int i = 0; i < argc; i++) config.command += (i ? " " : "") + std::string(argv[i]);
+      }
+      std::printf("== stage programs on the 1.3M-triangle mesh beside Embree on their rays (issue 50)\n");
+      pt::bench::run_accel_stage(config);
     }
     return 0;
   });

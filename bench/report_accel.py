@@ -11,6 +11,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from report_accel_stage import stage_section  # noqa: E402  (bench/, beside this script)
+
 
 ACCEL_METHODS = OrderedDict([("brute_cpu", "brute force (CPU, --accel none)"), ("bvh_cpu", "BVH (CPU)"),
                              ("bvh_gpu", "BVH (GPU backend)"), ("embree", "Embree 3 (rtcIntersect1; any hit: rtcOccluded1)")])
@@ -213,4 +215,5 @@ def accel_section(rows, builds, run, out_dir):
     notes = os.path.join(out_dir, "accel_notes.md")
     if os.path.exists(notes):
         md += [open(notes).read().rstrip(), ""]
+    md += stage_section(out_dir, read_keys)  # issue 50: the stages against Embree on their own rays
     return md

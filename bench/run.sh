@@ -26,4 +26,5 @@ echo $(( $(date +%s) - start )) > "$OUT/bench_seconds.txt"
 # Debian's python3, which has python3-matplotlib (not one of a version manager).
 /usr/bin/python3 bench/report.py --results "$OUT" --command "./tutorial bench" --markdown docs/results.md
 [ "${BENCH_CYCLES:-0}" != 1 ] || /usr/bin/python3 bench/cycles/compare.py --bin-dir "$BUILD_DIR/bin"  # issue 23: Cycles side by side (needs blender; docs/results/cycles_notes.md) when BENCH_CYCLES=1
+[ "${BENCH_CYCLES:-0}" != 1 ] || /usr/bin/python3 bench/cycles/compare_gltf.py --bin-dir "$BUILD_DIR/bin" --out-dir out/gltf_real --publish docs/results/gltf_real  # issue 46: real glTF files, Cycles through Blender's importer against stage5 (needs blender; 18 min on 2 busy cores)
 echo "bench: docs/results.md and the plots in $OUT/" >&2

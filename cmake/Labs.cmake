@@ -12,11 +12,16 @@
 #                          lab N's stubs (labs/check_definitions.h, labs/check_lab1.h), so one
 #                          build shows every lab's tests failing (tools/expect_lab_failure.sh).
 #                          Use with PT_CPU_GENERAL_ONLY and build only the tests.
+#   -DPT_LAB_GRADING=ON    with PT_LAB=N, the grader's build (tools/grade_lab.py): on the CPU
+#                          the student's functions are kept out of line (a GCC optimize
+#                          pragma that inlining cannot cross), so that a test that loops in one
+#                          of them stops in a frame that names it (tools/grading/stuck.py).
 #   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once (all features) instead of
 #                          once per feature variant: a faster build (the sanitizer and
 #                          lab-check builds use it); the images are the same.
 set(PT_LAB 0 CACHE STRING "Lab mode: 1-6 builds lab N with the student's labs/labN.glsl; 0 is the normal build")
 option(PT_LAB_CHECK "Check build: PT_LAB_STUB=N at run time selects lab N's stubs on the CPU" OFF)
+option(PT_LAB_GRADING "The grader's lab build: the student's functions out of line on the CPU" OFF)
 option(PT_CPU_GENERAL_ONLY "Compile one general CPU kernel per stage instead of feature variants" OFF)
 if(NOT PT_LAB MATCHES "^[0-6]$")
   message(FATAL_ERROR "PT_LAB is '${PT_LAB}': use -DPT_LAB=1, 2, 3, 4, 5 or 6 for a lab (docs/labs/README.md), or 0 for the normal build")
@@ -37,7 +42,17 @@ foreach(pair 2:common/kernel/uniform_hemisphere.glsl 2:common/kernel/russian_rou
   string(REGEX REPLACE ".*:" "" reference ${pair})
   if(PT_LAB EQUAL lab)
     if(NOT definitions MATCHES "labs/lab${lab}.glsl")
-      string(APPEND definitions "#include \"labs/lab${lab}.glsl\"\n")
+      if(PT_LAB_GRADING)
+        # GCC does not inline a function whose optimize options differ from its caller's. The
+        # handout's #includes come first, outside the pragma: the kernel's own functions in
+        # them stay inlined (read without a configure dependency: the file is the student's).
+        file(STRINGS ${PROJECT_SOURCE_DIR}/labs/lab${lab}.glsl includes REGEX "^#include \"(common|labs)/[a-z_0-9/]+\\.glsl\"$")
+        list(JOIN includes "\n" includes)
+        string(APPEND definitions "${includes}\n#ifdef __cplusplus\n#pragma GCC push_options\n#pragma GCC optimize(\"no-ipa-cp\")\n#endif\n"
+                                  "#include \"labs/lab${lab}.glsl\"\n#ifdef __cplusplus\n#pragma GCC pop_options\n#endif\n")
+      else()
+        string(APPEND definitions "#include \"labs/lab${lab}.glsl\"\n")
+      endif()
     endif()
   else()
     string(APPEND definitions "#include \"${reference}\"\n")

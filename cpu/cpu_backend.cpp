@@ -8,6 +8,7 @@
 #include <cerrno>  // program_invocation_short_name (GNU)
 #include <chrono>
 #include <cstdio>
+#include <span>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -42,10 +43,13 @@ class CpuBackend : public Backend {
 
   void set_scene(const Scene& scene, uint features, const Bvh* bvh) override {
     kernel_ = cpu_kernel_for(kernels_, features);
-    soa_ = std::make_unique<TriangleSoa>(scene.triangles);
+    // The triangles as arrays are made by the first pass that searches them by brute force
+    // (run_pass): with a BVH no pass reads them, and on 1.3 M triangles they cost as much
+    // CPU time as 0.2 M camera rays (issue 50, docs/acceleration.md).
+    triangles_ = scene.triangles;
+    soa_.reset();
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
-                         scene.point_lights.data(), nullptr, scene.lights.data(),
-                         soa_->data.data(), soa_->stride};
+                         scene.point_lights.data(), nullptr, scene.lights.data()};
     sphere_soa_ = std::make_unique<SphereSoa>(scene.spheres);
     scene_.sphere_soa = sphere_soa_->data.data();
     scene_.sphere_soa_stride = sphere_soa_->stride;
@@ -65,16 +69,24 @@ class CpuBackend : public Backend {
     wide_.reset();
     if (bvh && !bvh->nodes.empty()) {
       scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();
-      // The CPU walks the tree collapsed to 8 children and leaf blocks (wide_bvh.h).
-      wide_ = std::make_unique<WideBvh>(build_wide_bvh(*bvh, scene.triangles));
-      scene_.wide_bvh = wide_.get();
+      // The CPU walks the tree collapsed to 8 children and leaf blocks (wide_bvh.h): the
+      // one handed for this tree (give_cpu_wide_bvh), else made here.
+      if (bvh != given_for_ || !given_wide_) wide_ = std::make_unique<WideBvh>(build_wide_bvh(*bvh, scene.triangles));
+      scene_.wide_bvh = wide_ ? wide_.get() : given_wide_;
     }
   }
+
+  void give_wide_bvh(const Bvh* bvh, const WideBvh* wide) { given_for_ = bvh, given_wide_ = wide; }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     Clock::time_point start = Clock::now();
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
+    // nearest_triangle() (cpu/triangle_lanes.h) reads the arrays only without a BVH.
+    if ((params.accel != kAccelBvh || scene_.bvh_nodes == nullptr) && !soa_ && !triangles_.empty()) {
+      soa_ = std::make_unique<TriangleSoa>(triangles_);
+      scene_.triangle_soa = soa_->data.data(), scene_.triangle_soa_stride = soa_->stride;
+    }
     KernelScene scene = scene_;
     scene.counters = result.counters;
     kernel_.bind(scene, params);
@@ -110,9 +122,12 @@ class CpuBackend : public Backend {
   CpuKernel kernel_{};
   unsigned threads_;
   KernelScene scene_{};
-  std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test
+  std::span<const Triangle> triangles_;  // the scene's, for the arrays below
+  std::unique_ptr<TriangleSoa> soa_;  // the triangles as arrays for the block test, once needed
   std::unique_ptr<SphereSoa> sphere_soa_;  // the spheres as arrays for theirs
   std::unique_ptr<WideBvh> wide_;     // the BVH collapsed for the SIMD walk, or none
+  const Bvh* given_for_ = nullptr;    // give_cpu_wide_bvh(): a tree and its wide form
+  const WideBvh* given_wide_ = nullptr;
   std::vector<MaterialTextures> neutral_;  // material_textures[] of a scene without textures
 };
 
@@ -120,6 +135,10 @@ class CpuBackend : public Backend {
 
 std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads) {
   return std::make_unique<CpuBackend>(kernels, threads);
+}
+
+void give_cpu_wide_bvh(Backend& backend, const Bvh* bvh, const WideBvh* wide) {
+  if (auto* cpu = dynamic_cast<CpuBackend*>(&backend)) cpu->give_wide_bvh(bvh, wide);
 }
 
 }  // namespace pt

@@ -95,7 +95,13 @@ Hit nearest_triangle_wide(Ray ray, RayShear rs, Hit best) {
 // it and the render built one (the wide tree's SIMD walk, else common/kernel/bvh.glsl's
 // binary walk), else the SIMD lanes when the triangles are also laid out as arrays, else
 // the loop in index order; the same hits.
+// PT_CPU_RAY_LOG(ray, t_max, any_hit), when defined, sees every ray a kernel traces: the
+// bench's copy of a stage that records them (bench/accel_stage_rays.cpp); never in a stage.
+#ifndef PT_CPU_RAY_LOG
+#define PT_CPU_RAY_LOG(ray, t_max, any_hit)
+#endif
 Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
+  PT_CPU_RAY_LOG(ray, best.t, false);
   if (PT_CPU_WIDE_WALK && params.accel == kAccelBvh && wide_bvh != nullptr) return nearest_triangle_wide(ray, rs, best);
   if (params.accel == kAccelBvh && bvh_nodes != nullptr) return nearest_triangle_bvh(ray, rs, best);
   if (triangle_soa != nullptr) return hit_triangles_blocked(ray, rs, best);
@@ -105,7 +111,10 @@ Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
 // The CPU's occluded_triangles() (declared in intersect.glsl): the BVH's any-hit walk, else
 // whether the search above finds a hit.
 bool occluded_triangles(Ray ray, RayShear rs, float t_max) {
-  if (PT_CPU_WIDE_WALK && params.accel == kAccelBvh && wide_bvh != nullptr) return pt::wide_bvh_occluded(*wide_bvh, wide_ray(ray, rs), t_max);
+  if (PT_CPU_WIDE_WALK && params.accel == kAccelBvh && wide_bvh != nullptr) {
+    PT_CPU_RAY_LOG(ray, t_max, true);
+    return pt::wide_bvh_occluded(*wide_bvh, wide_ray(ray, rs), t_max);
+  }
   if (params.accel == kAccelBvh && bvh_nodes != nullptr) return occluded_bvh(ray, rs, t_max);
   return nearest_triangle(ray, rs, Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone)).kind != kPrimNone;
 }

@@ -69,9 +69,10 @@ def markdown_files(root):
     for base, dirs, names in os.walk(os.path.join(root, "docs")):
         dirs.sort()
         files += [os.path.join(base, n) for n in sorted(names) if n.endswith(".md")]
-    # docs/results/notes.md and stage_chapters_notes.md are fragments that bench/report.py
+    # docs/results/notes.md, stage_chapters_notes.md and cycles_notes.md are fragments that bench/report.py
     # copies into docs/results.md: their links are relative to docs/, and they are checked there.
-    fragments = {os.path.normpath(os.path.join(root, "docs", "results", n)) for n in ("notes.md", "stage_chapters_notes.md")}
+    fragments = {os.path.normpath(os.path.join(root, "docs", "results", n))
+                 for n in ("notes.md", "stage_chapters_notes.md", "cycles_notes.md")}
     return [f for f in files if os.path.isfile(f) and os.path.normpath(f) not in fragments]
 
 

@@ -50,7 +50,8 @@ from grading.reports import fresh_logs, write_reports  # noqa: E402
 from grading.sandbox import Sandbox, probe  # noqa: E402
 from grading.stuck import finder, lab_functions  # noqa: E402
 from grading.submission import Grade, find_submissions, grade_one, summary  # noqa: E402
-from grading.work_build import held_back_tests, lock_work, placeholders, put_lab_file, set_up  # noqa: E402
+from grading.depends import put_lab_file  # noqa: E402
+from grading.work_build import held_back_tests, lock_work, placeholders, set_up  # noqa: E402
 from make_lab_handout import HELD_BACK_FILES, REFERENCE_FILES  # noqa: E402
 
 
@@ -130,18 +131,19 @@ def main(argv):
     logs = fresh_logs(out)
     start = time.monotonic()
     # The lab's own references are hidden from the setup build too: the lab build never uses them.
-    lab_file, original, setup = set_up(REPO, a, box, out, logs, cmake, ctest, len(submissions),
+    lab_file, original, lab_stamp, setup = set_up(REPO, a, box, out, logs, cmake, ctest, len(submissions),
                                        REFERENCE_FILES[a.lab] + HELD_BACK_FILES)
     box.hidden_in_tests = dict(box.hidden_in_build)
     box.hidden_in_tests.update(placeholders(a.work, src, held_back_tests(src), "a held-back test"))
-    setup_s = time.monotonic() - start
+    setup_s, setup_cpu = time.monotonic() - start, box.cpu_seconds
     ctx = {"args": a, "work": a.work, "src": src, "build": build, "logs": logs, "lab_file": lab_file,
+           "lab_stamp": lab_stamp,
            "cmake": cmake, "target": setup.get("target", TEST_TARGET),
            "test_bin": os.path.join(build, "bin", setup.get("target", TEST_TARGET)),
            "specs": setup["specs"], "tests": setup["tests"], "sandbox": box, "references": references,
            "hints": read_hints(src, a.lab),
            "on_timeout": finder(lab_functions(original.decode(errors="replace")), {setup.get("target", TEST_TARGET)} | STAGES)}
-    print(f"grade_lab: set up in {setup_s:.0f} s; {len(ctx['tests'])} tests per submission, "
+    print(f"grade_lab: set up in {setup_s:.0f} s ({setup_cpu:.0f} s CPU); {len(ctx['tests'])} tests per submission, "
           f"{'sealed (bubblewrap)' if box.sealed else 'UNSEALED'}, --jobs {a.jobs}", file=sys.stderr, flush=True)
 
     grades = []
@@ -152,9 +154,13 @@ def main(argv):
             grade_one(g, ctx)
             grades.append(g)
             print(g.line(), flush=True)
+            left = (time.monotonic() - start - setup_s) / k * (len(submissions) - k)
+            print(f"grade_lab: [{k}/{len(submissions)}] {name}: {g.verdict}, built in {g.build_s:.1f} s ({g.build_cpu:.1f} s "
+                  f"CPU), tested in {g.test_s:.1f} s ({g.test_cpu:.1f} s CPU)"
+                  + (f"; about {left / 60:.0f} min left" if k < len(submissions) else ""), file=sys.stderr, flush=True)
     finally:
         # Leave the work copy as the repository has it, and no student's binaries behind.
-        put_lab_file(build, lab_file, original)
+        put_lab_file(build, lab_file, original, lab_stamp)
         elapsed = time.monotonic() - start
         write_reports(out, a.lab, grades, elapsed)
     print(summary(grades), flush=True)

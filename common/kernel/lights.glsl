@@ -41,14 +41,14 @@ LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick);
 bool counts_emission(uint depth, bool after_delta);
 
 // From inside (or on) a sphere light: a point uniform on its area, density 1 / (4 pi r^2);
-// light reaches the inside only from a double-sided emitter.
+// light reaches the inside only from a double-sided emitter. Its direction from the centre: a
+// uniform hemisphere direction drawn with |z|, z = 1 - 2 u.x, mirrored where z < 0.
 LightSample sample_sphere_light_inside(Sphere s, vec3 p, vec2 u, float pick) {
   vec3 center = s.center;
   float radius = s.radius;
   float z = 1.0f - 2.0f * u.x;
-  float r = sqrt(max(0.0f, 1.0f - z * z));
-  float phi = 2.0f * kPi * u.y;
-  vec3 n = vec3(r * cos(phi), r * sin(phi), z);
+  vec3 n = sample_uniform_hemisphere(vec2(abs(z), u.y));
+  if (z < 0.0f) n.z = -n.z;
   vec3 y = center + radius * n;
   vec3 d = y - p;
   float dist2 = dot(d, d);

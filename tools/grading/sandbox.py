@@ -5,6 +5,7 @@ work copy read-only less the reference solutions (and, for the tests, the held-b
 no network, a private /tmp, one writable folder, and limits on CPU time, memory, processes
 and file size. Its output comes back over pipes that the grader reads up to a cap."""
 import os
+import re
 import selectors
 import shutil
 import signal
@@ -39,6 +40,12 @@ TEST_LIMITS = Limits(cpu_s=1200, memory=memory_limit(), processes=256, file_size
 FOLDER_CAP = 256 * MiB  # what a submission's tests may leave in their writable folder
 
 
+TIME = "/usr/bin/time"  # GNU time (Debian's `time`): the CPU seconds of a sealed command, when installed
+CPU_MARK = "pt-grade-cpu-seconds"
+CPU_LINE = re.compile(rb"(\n?Command (exited with non-zero status|terminated by signal) \d+)?\n?"
+                      + CPU_MARK.encode() + rb" ([0-9.]+) ([0-9.]+)\n?$")
+
+
 class Result:
     """How a command ended: return code (negative: the signal), timed out, which pipe went over
     its cap (None, 'stdout' or 'stderr'), the bytes read from each, the seconds it took."""
@@ -46,6 +53,7 @@ class Result:
     def __init__(self):
         self.rc, self.timed_out, self.over_cap = None, False, None
         self.stdout, self.stderr, self.report, self.seconds = b"", b"", b"", 0.0
+        self.cpu_seconds = 0.0  # user + system time of the command and what it waited for (GNU time)
         self.running_function = None  # what on_timeout found running, if anything
 
 
@@ -57,6 +65,7 @@ class Sandbox:
         self.sealed, self.src = sealed, src
         self.hidden_in_build, self.hidden_in_tests = hidden_in_build, hidden_in_tests  # {path: placeholder}
         self.as_nobody = sealed and os.geteuid() == 0
+        self.cpu_seconds = 0.0  # the CPU seconds of every command run so far
 
     def owner_of_writable(self, path):
         """Makes path (a folder the sandbox writes) the sandbox user's."""
@@ -73,6 +82,8 @@ class Sandbox:
         processes = limits.processes if self.as_nobody else limits.processes + user_processes()
         limited = ["prlimit", f"--cpu={limits.cpu_s}", f"--as={limits.memory}", f"--fsize={limits.file_size}",
                    "--core=0", f"--nproc={processes}", "--"] + cmd
+        if os.path.isfile(TIME):  # the command's CPU time on its stderr's last line (bwrap's
+            limited = [TIME, "-f", CPU_MARK + " %U %S", "--"] + limited  # own wait does not pass it on)
         if not self.sealed:
             return limited
         if self.as_nobody:
@@ -127,7 +138,9 @@ class Sandbox:
             cmd = [c.replace("{report}", f"/dev/fd/{pipe[1]}") for c in cmd]
         argv = self.argv(cmd, cwd, writable, readonly, hidden, limits, env or {})
         full_env = None if self.sealed else {**os.environ, **(env or {})}
-        return run_capped(argv, "/" if self.sealed else cwd, limits, timeout, full_env, pipe, on_timeout)
+        r = run_capped(argv, "/" if self.sealed else cwd, limits, timeout, full_env, pipe, on_timeout)
+        self.cpu_seconds += r.cpu_seconds
+        return r
 
 
 def user_processes():
@@ -193,6 +206,9 @@ def run_capped(argv, cwd, limits, timeout, env, pipe=None, on_timeout=None):
     r.stdout, r.stderr = bytes(data[p.stdout]), bytes(data[p.stderr])
     r.report = bytes(data[report]) if report else b""
     r.seconds = time.monotonic() - start
+    m = CPU_LINE.search(r.stderr)
+    if m:  # GNU time's line, the last of stderr: the command's CPU seconds, taken off its output
+        r.cpu_seconds, r.stderr = float(m.group(3)) + float(m.group(4)), r.stderr[:m.start()]
     return r
 
 

@@ -16,7 +16,9 @@ from .hints import sentence, suspect_for
 from .lab_tests import CONVENTION, read_report, short, signal_name
 from .sandbox import BUILD_LIMITS, FOLDER_CAP, MiB, TEST_LIMITS
 from .source_check import check_source
-from .work_build import build_target, first_error, put_lab_file, snapshot, undo_writes, unexpected_writes
+from .depends import put_lab_file
+from .glsl_check import glsl_check
+from .work_build import build_target, first_error, first_error_of, snapshot, undo_writes, unexpected_writes
 
 VERDICTS = ["PASS", "FAIL", "COMPILE ERROR", "TIMEOUT", "CRASH", "REFUSED"]
 
@@ -46,6 +48,7 @@ class Grade:
         self.warnings, self.failed, self.convention_only = [], [], False
         self.passed = self.total = 0
         self.build_s = self.test_s = 0.0
+        self.build_cpu = self.test_cpu = 0.0  # user + system seconds
 
     def line(self):
         text = f"{self.name}: {self.verdict}" + (f" {self.detail}" if self.detail else "")
@@ -84,7 +87,7 @@ def grade_one(g, ctx):
 def install(g, ctx, code):
     """g's file as the work copy's labs/labLAB.glsl, with no output of the build left that
     depends on it (exits when the test program survives: no grade would be safe)."""
-    outputs = put_lab_file(ctx["build"], ctx["lab_file"], code)
+    outputs = put_lab_file(ctx["build"], ctx["lab_file"], code, ctx["lab_stamp"])
     if os.path.exists(ctx["test_bin"]):
         a = ctx["args"]
         die(f"{ctx['test_bin']} survived the deletion of what depends on labs/lab{a.lab}.glsl: the build's "
@@ -123,7 +126,7 @@ def build_submission(g, ctx, outputs):
     before = snapshot(build)
     r = box.run(build_target(ctx["cmake"], build, ctx["args"].jobs, ctx["target"]), build, [build], [ctx["src"]],
                 box.hidden_in_build, BUILD_LIMITS, BUILD_TIMEOUT)
-    g.build_s = r.seconds
+    g.build_s, g.build_cpu = r.seconds, r.cpu_seconds
     build_log = os.path.join(ctx["logs"], f"{g.name}.build.log")
     write_log(build_log, r.stdout, r.stderr)
     text = (r.stdout + r.stderr).decode("utf-8", errors="replace")
@@ -143,7 +146,28 @@ def build_submission(g, ctx, outputs):
         g.verdict, g.detail = "COMPILE ERROR", first_error(build_log, ctx["src"])
         g.warnings = [w for w in g.warnings if w not in g.detail]
     else:
+        return glsl_compiles(g, ctx, build_log)
+    return False
+
+
+def glsl_compiles(g, ctx, build_log):
+    """True when g's file compiles as GLSL too (glsl_check.py); else False and COMPILE ERROR
+    with glslang's first error. Its output is added to the build log."""
+    r = glsl_check(ctx)
+    if r is None:
         return True
+    g.build_s += r.seconds
+    g.build_cpu += r.cpu_seconds
+    with open(build_log, "ab") as fh:
+        fh.write(r.stdout + r.stderr)
+    text = (r.stdout + r.stderr).decode("utf-8", errors="replace")
+    g.warnings += [w for w in student_warnings(text, ctx["args"].lab) if w not in g.warnings][:3 - len(g.warnings)]
+    if r.rc == 0 and not r.timed_out and not r.over_cap:
+        return True
+    g.verdict = "COMPILE ERROR"
+    g.detail = ("glslangValidator did not finish (time or output over its limit)" if r.timed_out or r.over_cap
+                else first_error_of(text, ctx["src"]))
+    g.warnings = [w for w in g.warnings if w not in g.detail]
     return False
 
 
@@ -189,7 +213,7 @@ def run_tests(g, ctx):
     env = {"PT_TEST_PICTURES": os.path.join(run, "test_pictures")}
     r = box.run(cmd, run, [run], [ctx["src"], ctx["build"]], box.hidden_in_tests, TEST_LIMITS,
                 ctx["args"].timeout, env=env, report=True, on_timeout=ctx.get("on_timeout"))
-    g.test_s = r.seconds
+    g.test_s, g.test_cpu = r.seconds, r.cpu_seconds
     write_log(os.path.join(ctx["logs"], f"{g.name}.tests.log"), r.stdout, r.stderr)
     write_log(os.path.join(ctx["logs"], f"{g.name}.tests.xml"), r.report)
     written = folder_size(run)

@@ -1,22 +1,23 @@
 """The work copy of the repository and its lab build, for tools/grade_lab.py (grading a class's
 lab submissions; tooling for teachers, not a part of the article). WORK/src is a copy of the
-repository, rewritten only where a file differs, and WORK/build its build with -DPT_LAB=LAB,
-kept between runs. Before a submission is built, every output of that build that depends on
-labs/labLAB.glsl is deleted: objects, SPIR-V headers, the libraries and programs linked from
-them, pt_tests among them. The dependencies are the build's own (CMake's build.make rules and
-the compilers' depfiles), so a submission that does not compile leaves no test program at all,
-never the previous student's (issue 24). The first build, with the repository's own
-labs/labLAB.glsl, and its list of the lab's tests are kept in WORK/setup.json."""
+repository, rewritten only where a file differs, and WORK/build its build with -DPT_LAB=LAB
+-DPT_LAB_GRADING=ON, kept between runs. Before a submission is built, every output of that
+build made from labs/labLAB.glsl is deleted (depends.py), so a submission that does not compile
+leaves no test program at all, never the previous student's (issue 24). The first build, with
+the repository's own labs/labLAB.glsl, is configured again with only the test files that hold
+one of the lab's tests; it and the list of those tests are kept in WORK/setup.json."""
 import fcntl
 import filecmp
 import json
 import os
 import re
 import shutil
+import subprocess
 import sys
 
 from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die
 from .lab_tests import lab_specs, tag_specs, test_names
+from .depends import delete_dependents
 from .sandbox import BUILD_LIMITS, NOBODY
 
 
@@ -56,87 +57,6 @@ def sync_tree(src, dest, skip):
                 os.remove(os.path.join(root, f))
                 changed += 1
     return changed
-
-
-def make_tokens(text):
-    """The words of a make rule or depfile: backslash-newlines joined, '\\ ' kept in a name."""
-    text = text.replace("\\\n", " ")
-    return [t.replace("\\ ", " ") for t in re.findall(r"(?:\\ |[^\s])+", text)]
-
-
-def build_node(path, cwd, build):
-    """A path of a rule or depfile as dependency_graph names it: relative to the build folder
-    when inside it, absolute otherwise."""
-    p = os.path.normpath(path if os.path.isabs(path) else os.path.join(cwd, path))
-    return os.path.relpath(p, build) if p.startswith(build + os.sep) else p
-
-
-def add_rule_edges(users, path, build):
-    """Adds the rules of CMake's Makefile path (a build.make) to users."""
-    lines = open(path, encoding="utf-8", errors="replace").read().replace("\\\n", " ").splitlines()
-    for line in lines:
-        if not line or line[0] in "\t#" or ":" not in line or line.startswith("."):
-            continue
-        m = re.match(r"^((?:\\ |[^\s:])+)\s*:(?!=)(.*)$", line)
-        if not m:
-            continue
-        target = build_node(make_tokens(m.group(1))[0], build, build)
-        for dep in make_tokens(m.group(2)):
-            users.setdefault(build_node(dep, build, build), set()).add(target)
-
-
-def add_depfile_edges(users, path, build):
-    """Adds a compiler's depfile path (an *.o.d) to users."""
-    tokens = make_tokens(open(path, encoding="utf-8", errors="replace").read())
-    if not tokens or not tokens[0].endswith(":"):
-        return
-    # gcc runs in the target's folder, the part of the path before CMakeFiles/.
-    cwd = path.split(os.sep + "CMakeFiles" + os.sep)[0]
-    target = os.path.relpath(path[:-2], build)
-    for dep in tokens[1:]:
-        if dep.endswith(":"):  # -MP phony rules
-            continue
-        users.setdefault(build_node(dep, cwd, build), set()).add(target)
-
-
-def dependency_graph(build):
-    """prerequisite -> the outputs made from it, from CMake's Makefile rules (build.make) and the
-    compilers' depfiles (*.o.d). Paths inside the build folder are relative to it, others absolute."""
-    users = {}
-    for root, _, files in os.walk(build):
-        for f in files:
-            path = os.path.join(root, f)
-            if f == "build.make":
-                add_rule_edges(users, path, build)
-            elif f.endswith(".o.d"):
-                add_depfile_edges(users, path, build)
-    return users
-
-
-def delete_dependents(build, lab_file):
-    """Deletes every output of the build that depends on lab_file; returns them all (relative
-    to build), deleted or not there."""
-    users = dependency_graph(build)
-    seen, todo = set(), [os.path.normpath(lab_file)]
-    while todo:
-        for out in users.get(todo.pop(), ()):
-            if out not in seen:
-                seen.add(out)
-                todo.append(out)
-    outputs = {out for out in seen if not os.path.isabs(out)}  # only what the build made
-    for out in outputs:
-        path = os.path.join(build, out)
-        if os.path.isfile(path):
-            os.remove(path)
-    return outputs
-
-
-def put_lab_file(build, lab_file, code):
-    """Writes code as the work copy's labs/labLAB.glsl (a new file, written now) and deletes
-    every output of the build that depends on it; returns those outputs (relative to build)."""
-    with open(lab_file, "wb") as fh:
-        fh.write(code)
-    return delete_dependents(build, lab_file)
 
 
 def snapshot(build):
@@ -186,7 +106,12 @@ ERROR_LINE = re.compile(r"(:\d+(:\d+)?: (fatal )?error:)|(^ERROR: )|(undefined r
 def first_error(log_path, src):
     """The first compiler, glslang or linker error line of a build log, with the work copy's
     paths shortened to the repository's (labs/lab2.glsl:14:3: error: ...)."""
-    lines = open(log_path, encoding="utf-8", errors="replace").read().splitlines()
+    return first_error_of(open(log_path, encoding="utf-8", errors="replace").read(), src)
+
+
+def first_error_of(text, src):
+    """first_error of the text of a log."""
+    lines = text.splitlines()
     at = next((i for i, l in enumerate(lines) if ERROR_LINE.search(l)), None)
     pick = None if at is None else lines[at]
     if pick is not None and pick.rstrip().endswith(":") and at + 1 < len(lines):
@@ -227,51 +152,83 @@ def build_is_new(build, a):
     return False
 
 
+# The setup's format: a WORK/setup.json of another one (an older grader's build, configured
+# without PT_LAB_GRADING) is built again.
+SETUP_FORMAT = 2
+
+
 def kept_setup(stamp, lab, fresh, changed):
     """The setup of the last run (WORK/setup.json) when neither the build nor the repository
     changed since, else None (and the stale file removed)."""
     setup = None
     if not fresh and not changed and os.path.isfile(stamp):
         setup = json.load(open(stamp, encoding="utf-8"))
-        setup = setup if setup.get("lab") == lab else None
+        setup = setup if setup.get("lab") == lab and setup.get("format") == SETUP_FORMAT else None
     if setup is None and os.path.exists(stamp):
         os.remove(stamp)
     return setup
 
 
 def lab_target(build):
-    """(the target that holds the lab's tests, the lab's Catch2 tags or None): pt_lab_tests and
-    its tags when the lab build defines it (tests/CMakeLists.txt writes pt_lab_tests.json),
-    else pt_tests, whose ctest entries then give the tests."""
+    """(the target that holds the lab's tests, the lab's Catch2 tags or None, the test files it
+    compiles or None): pt_lab_tests, its tags and files when the lab build defines it
+    (tests/CMakeLists.txt writes pt_lab_tests.json), else pt_tests, whose ctest entries then
+    give the tests."""
     path = os.path.join(build, "pt_lab_tests.json")
     if os.path.isfile(path):
         info = json.load(open(path, encoding="utf-8"))
-        return info["target"], info["tags"]
-    return TEST_TARGET, None
+        return info["target"], info["tags"], info.get("files")
+    return TEST_TARGET, None, None
 
 
-def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
-    """Configures the lab build, builds its tests with the repository's own labs/labLAB.glsl (the
-    handout's stub; a failure there is not a student's), both in the sandbox, and lists the
-    lab's tests. Returns the setup {lab, target, specs, tests}, written to stamp."""
-    src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
-    os.makedirs(build, exist_ok=True)
-    box.owner_of_writable(build)
+def configure(a, box, cmake, src, build, setup_log, files):
+    """Configures the lab build in the sandbox: the grader's (PT_LAB_GRADING), one general CPU
+    kernel per stage, pt_lab_tests made of files (test files without .cpp; [] for all)."""
     r = box.run([cmake, "-S", src, "-B", build, "-G", "Unix Makefiles", "-DCMAKE_BUILD_TYPE=Release",
-                 f"-DPT_LAB={a.lab}", "-DPT_CPU_GENERAL_ONLY=ON"], build, [build], [src], box.hidden_in_build,
+                 f"-DPT_LAB={a.lab}", "-DPT_LAB_GRADING=ON", "-DPT_CPU_GENERAL_ONLY=ON",
+                 "-DPT_LAB_TEST_FILES=" + ";".join(files)], build, [build], [src], box.hidden_in_build,
                 BUILD_LIMITS, BUILD_TIMEOUT)
     with open(setup_log, "ab") as fh:
         fh.write(r.stdout + r.stderr)
     if r.rc != 0:
         die(f"the lab build does not configure: see {setup_log}", 1)
-    target, tags = lab_target(build)
+    return lab_target(build)
+
+
+def test_files(build, specs, target):
+    """The test files (Catch2's [#file] tags, without .cpp) that hold a test specs select."""
+    listing = subprocess.run([os.path.join(build, "bin", target), "-#", "--list-tags"] + specs,
+                             capture_output=True, text=True)
+    return sorted(set(re.findall(r"\[#(\w+)\]", listing.stdout)))
+
+
+def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
+    """Configures the lab build, builds its tests with the repository's own labs/labLAB.glsl (the
+    handout's stub; a failure there is not a student's), both in the sandbox, and lists the
+    lab's tests; then configures it again with only the test files that hold one of them, so
+    that a submission's build compiles no other. Returns the setup {lab, target, specs,
+    tests}, written to stamp."""
+    src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
+    os.makedirs(build, exist_ok=True)
+    box.owner_of_writable(build)
+    target, tags, files = configure(a, box, cmake, src, build, setup_log, [])
     delete_dependents(build, lab_file)
-    rc, timed_out = sealed_build(box, cmake, build, src, a.jobs, target, setup_log)
-    if rc != 0 or timed_out:
-        die(f"the lab build fails with the repository's own labs/lab{a.lab}.glsl, before any submission: "
-            f"{first_error(setup_log, src)} (see {setup_log})", 1)
-    specs = tag_specs(tags, a.lab) if tags else lab_specs(ctest, build, a.lab)
-    setup = {"lab": a.lab, "target": target, "specs": specs, "tests": test_names(build, specs, target)}
+    specs, tests = None, None
+    while True:
+        rc, timed_out = sealed_build(box, cmake, build, src, a.jobs, target, setup_log)
+        if rc != 0 or timed_out:
+            die(f"the lab build fails with the repository's own labs/lab{a.lab}.glsl, before any submission: "
+                f"{first_error(setup_log, src)} (see {setup_log})", 1)
+        specs = specs or (tag_specs(tags, a.lab) if tags else lab_specs(ctest, build, a.lab))
+        names = test_names(build, specs, target)
+        if tests is not None and names != tests:
+            die(f"lab {a.lab}'s test program lost tests when built of the files that hold them only: {setup_log}", 1)
+        tests = names
+        needed = ["test_main"] + test_files(build, specs, target) if files else None
+        if not needed or sorted(needed) == sorted(files):
+            break
+        target, tags, files = configure(a, box, cmake, src, build, setup_log, needed)
+    setup = {"lab": a.lab, "format": SETUP_FORMAT, "target": target, "specs": specs, "tests": tests}
     if not setup["tests"]:
         die(f"lab {a.lab}'s specs {specs} select no test of {target}", 1)
     with open(stamp, "w", encoding="utf-8") as fh:
@@ -283,23 +240,24 @@ def set_up(repo, a, box, out, logs, cmake, ctest, count, hidden):
     """Brings the work copy up to date with repo, sets the sandbox's placeholders of the files
     hidden from every build (hidden: repository-relative) and, the first time and whenever the
     repository changed since, builds the lab once (first_build). Returns (the work copy's
-    labs/labLAB.glsl, its content, the setup {lab, specs, tests})."""
+    labs/labLAB.glsl, its content, its time stamp, the setup {lab, specs, tests})."""
     src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
     changed = sync_tree(repo, src, {a.work, out})
     box.hidden_in_build = placeholders(a.work, src, hidden, "a reference solution")
     lab_file = os.path.join(src, "labs", f"lab{a.lab}.glsl")
     original = open(lab_file, "rb").read()
+    lab_stamp = os.stat(lab_file).st_mtime_ns  # every submission's file gets it (depends.put_lab_file)
     fresh = build_is_new(build, a)
     stamp = os.path.join(a.work, "setup.json")
     setup = kept_setup(stamp, a.lab, fresh, changed)
     print(f"grade_lab: lab {a.lab}, {count} submission(s); the lab build is {build}"
-          + (" (new: the first build takes 10-20 min on 2 cores)" if fresh else "")
+          + (" (new: the first build takes about 5 min on 2 idle cores)" if fresh else "")
           + (", unchanged since the last run" if setup else ""), file=sys.stderr, flush=True)
     if not fresh and box.as_nobody and os.stat(build).st_uid != NOBODY:
         box.owner_of_writable(build)  # a build made unsealed (or by an older grader): the sandbox's now
     if setup is None:
         setup = first_build(a, box, cmake, ctest, lab_file, os.path.join(logs, "_setup.log"), stamp)
-    return lab_file, original, setup
+    return lab_file, original, lab_stamp, setup
 
 
 def placeholders(work, src, paths, why):
