@@ -75,7 +75,7 @@ double camera_ray_seconds(const Scene& scene, const RenderSettings& s) {
 
 std::vector<LoggedRay> stage4_rays(const Scene& scene, const RenderSettings& s, const Bvh& bvh) {
   static const CpuKernel kernel[] = {bench_stage4_log::cpu_kernel()};
-  StageKernels k{"stage4_log", kernel, {}, true, false};
+  StageKernels k{"stage4_log", kernel, {}, true};
   std::unique_ptr<Backend> backend = make_cpu_backend(k, 1);
   std::vector<LoggedRay> log;
   log.reserve(std::size_t(s.width) * std::size_t(s.height) * s.spp * 4u);
