@@ -209,7 +209,8 @@ vec3 light_sample_normal(uint lobe, vec3 n) {
   return n;
 }
 
-// What a non-delta bounce to wi changes the path's radiance scale by (roulette_weight's eta_scale).
+// What a non-delta bounce to wi changes the path's radiance scale by (eta^2 after a refraction;
+// the tests' energy kept, R + eta^2 T, reads it).
 float lobe_eta2(uint lobe, Material m, vec3 wi) {
   if (has_feature(kFeatureRoughGlass) && lobe == kMaterialRoughGlass) return rough_glass_eta2(m, wi);
   return 1.0f;

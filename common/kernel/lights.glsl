@@ -259,38 +259,6 @@ float sky_light_pdf(vec3 n, vec3 wi) {
   return sky_pick_probability() * cosine_hemisphere_pdf(max(dot(n, wi), 0.0f));
 }
 
-// At most this many entries of the light table are tried by may_find_emission; a scene
-// with more emitters traces the ray instead.
-const uint kMaxLightsTried = 16u;
-
-// Whether a ray could find emission: false only where tracing it for certain finds none
-// (beyond the article, for a roulette drawn after the emission a ray finds, which no stage
-// runs since issue #48: a path that Russian roulette has ended would still count the
-// emission its last ray finds, and most such rays find none). That is so when the sky is
-// black, no hole of an alpha mask can move the ray's origin (intersect_scene), and the ray
-// meets none of the emitters: every surface that emits is in the light table
-// (scene_lights.cpp), and the nearest hit of the full search, when it is an emitter, is a
-// hit that emitter's own test finds, with the same ray and the same bits. Tries each
-// emitter alone, so it costs a few triangle tests where the lights are few, and answers
-// true (trace it) where they are many.
-bool may_find_emission(Ray ray) {
-  if (has_feature(kFeatureSky) && (params.sky.x > 0.0f || params.sky.y > 0.0f || params.sky.z > 0.0f)) return true;
-  if (has_feature(kFeatureAlphaMask) || params.light_count > kMaxLightsTried) return true;
-  RayShear rs = make_ray_shear(ray.dir);
-  Hit none = Hit(kInfinity, 0.0f, 0.0f, 0u, kPrimNone);
-  for (uint i = 0u; i < params.light_count; i++) {
-    Light light = lights[i];
-    Hit hit = none;
-    if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.kind == kLightTriangle) {
-      hit = hit_triangle(ray, rs, light.index, none);
-    } else if (!has_feature(kFeaturePointLights) || light.kind == kLightSphere) {
-      hit = hit_sphere(ray, light.index, none);
-    }
-    if (hit.kind != kPrimNone) return true;
-  }
-  return false;
-}
-
 // Units in the last place of the light point's coordinates that a shadow ray's last stretch
 // spans at least: p + dist wi rebuilds the point only to within a few ulps of its magnitude,
 // which far from the origin (ulp 0.0078 at 1e5) is far more than the relative 1e-4 of a

@@ -92,7 +92,7 @@ LobeSample sample_rough_glass(Material m, vec3 wo, vec3 u) {
 }
 
 // What a path's radiance scale changes by when it leaves along wi: eta^2 through a
-// refraction (roulette_weight's eta_scale, as DeltaBounce.eta2 of smooth glass), else 1.
+// refraction (as DeltaBounce.eta2 of smooth glass), else 1.
 float rough_glass_eta2(Material m, vec3 wi) {
   return wi.z < 0.0f ? m.ior * m.ior : 1.0f;
 }

@@ -22,15 +22,6 @@ bool is_finite(vec3 v) {
 // kRouletteThroughput (p = min(1, the largest component of beta)).
 float russian_roulette(vec3 beta, uint mode);
 
-// What a roulette may read in place of the path weight beta (beyond the article; no stage
-// reads it since issue #48): beta times eta_scale, the refractions' eta^2, without the radiance
-// scale of entering glass, and of that the square root, as Blender's Cycles takes it: a
-// path then ends later, when its weight has fallen further (p = 0.71 at weight 0.5, 0.32 at
-// 0.1), which costs longer paths and pays in less variance (docs/stage5_mis.md).
-vec3 roulette_weight(vec3 beta, float eta_scale) {
-  return vec3(sqrt(max_component(beta * eta_scale)));
-}
-
 // The two other ways a path ends, both bookkeeping rather than the article's step, both
 // counted for the summary line. The depth cap: a safety net far beyond what roulette
 // reaches (--depth-cap).
