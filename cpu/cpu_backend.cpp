@@ -15,6 +15,7 @@
 
 #include "common/render/render.h"
 #include "common/scene/bvh.h"
+#include "common/scene/environment.h"
 #include "common/scene/scene.h"
 #include "cpu/cpu_variants.h"
 #include "cpu/sphere_soa.h"
@@ -66,6 +67,10 @@ class CpuBackend : public Backend {
       scene_.material_textures = neutral_.data();
     }
     if (uses_shading_normals(scene)) scene_.triangle_shading = scene.triangle_shading.data();
+    if (scene.environment) {
+      scene_.environment_radiance = scene.environment->radiance.data();
+      scene_.environment_tables = scene.environment->table.data();
+    }
     wide_.reset();
     if (bvh && !bvh->nodes.empty()) {
       scene_.bvh_nodes = bvh->nodes.data(), scene_.bvh_indices = bvh->indices.data();

@@ -38,6 +38,13 @@ inline const Texture* textures = nullptr;                        // the texture 
 inline const uint* texels = nullptr;                             // 8-bit RGBA texels
 // Shading normals (common/kernel/shading_normal.glsl): nullptr when the scene has none.
 inline const TriangleShading* triangle_shading = nullptr;        // parallel to triangles[]
+// The environment map (common/kernel/environment.glsl): nullptr when the scene has none.
+inline const float* env_texels = nullptr;  // RGB per texel
+inline const float* env_tables = nullptr;  // the sampling distribution's tables
+inline vec3 environment_texel(uint i) {
+  return vec3(env_texels[3u * i], env_texels[3u * i + 1u], env_texels[3u * i + 2u]);
+}
+inline float environment_table(uint i) { return env_tables[i]; }
 inline Triangle triangle_at(uint i) { return triangles[i]; }
 // The BVH's nodes as bvh.glsl reads them (gpu/kernel_bindings.glsl reads them as texels).
 inline BvhNode bvh_node_at(uint i) { return bvh_nodes[i]; }

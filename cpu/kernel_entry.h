@@ -23,6 +23,8 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   textures = scene.textures;
   texels = scene.texels;
   triangle_shading = scene.triangle_shading;
+  env_texels = scene.environment_radiance;
+  env_tables = scene.environment_tables;
   params = pass;
 }
 

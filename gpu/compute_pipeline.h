@@ -5,7 +5,8 @@
 // BVH's nodes (a uniform texel buffer of uvec4, Buffer::texel_view) and 10 its triangle
 // indices (storage; common/scene/bvh.h), 11 to 14 the
 // triangles' attributes, the materials' textures, the texture table and the texels
-// (storage; common/kernel/texture.glsl).
+// (storage; common/kernel/texture.glsl), 15 the shading normals, 16 and 17 the environment
+// map's radiance and tables (storage; common/kernel/environment.glsl).
 #pragma once
 
 #include <cstdint>
@@ -16,7 +17,7 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 16;
+constexpr uint32_t kBindingCount = 18;
 constexpr uint32_t kParamsBinding = 4;
 constexpr uint32_t kUniformTrianglesBinding = 8;
 constexpr uint32_t kBvhNodesBinding = 9;  // a uniform texel buffer

@@ -17,6 +17,7 @@
 #include "common/render/memory.h"
 #include "common/render/render.h"
 #include "common/scene/bvh.h"
+#include "common/scene/environment.h"
 #include "common/scene/scene.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/fault.h"
@@ -99,6 +100,11 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     const bool shaded = (features & kFeatureShadingNormals) && uses_shading_normals(scene);  // else a placeholder
     upload(triangle_shading_, scene.triangle_shading.data(),
            shaded ? scene.triangle_shading.size() * sizeof(TriangleShading) : 0, "the shading normals need");
+    const Environment* env = (features & kFeatureEnvironment) ? scene.environment.get() : nullptr;
+    upload(environment_radiance_, env ? env->radiance.data() : nullptr, env ? env->radiance.size() * sizeof(float) : 0,
+           "the environment map needs");
+    upload(environment_tables_, env ? env->table.data() : nullptr, env ? env->table.size() * sizeof(float) : 0,
+           "the environment map's sampling tables need");
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
     // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
     std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
@@ -134,6 +140,10 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     }
     if ((features & kFeatureShadingNormals) && uses_shading_normals(scene))
       need(scene.triangle_shading.size(), sizeof(TriangleShading), "the shading normals need");
+    if ((features & kFeatureEnvironment) && scene.environment) {
+      need(scene.environment->radiance.size(), sizeof(float), "the environment map needs");
+      need(scene.environment->table.size(), sizeof(float), "the environment map's sampling tables need");
+    }
     need(pixels, sizeof(glm::vec4), "the image needs");
     if (total > context_.heap_size()) {
       throw Error(kExitNoDevice, "the render needs " + megabytes(total) + " of buffers in all but device '" +
@@ -190,7 +200,8 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     const Buffer* buffers[kBindingCount] = {&triangles_, &spheres_,   &materials_, &point_lights_,     &params_,
                                             &output_,    &counters_, &lights_,    &uniform_triangles_,
                                             &bvh_nodes_, &bvh_indices_, &triangle_attributes_, &material_textures_,
-                                            &textures_,  &texels_,   &triangle_shading_};
+                                            &textures_,  &texels_,   &triangle_shading_, &environment_radiance_,
+                                            &environment_tables_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -322,6 +333,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
   Buffer bvh_nodes_, bvh_indices_;  // bindings 9 and 10
   Buffer triangle_attributes_, material_textures_, textures_, texels_;  // bindings 11 to 14
   Buffer triangle_shading_;                                             // binding 15
+  Buffer environment_radiance_, environment_tables_;                    // bindings 16 and 17
 };
 
 }  // namespace

@@ -36,6 +36,13 @@ layout(std430, set = 0, binding = 13) readonly buffer TextureBuffer { Texture te
 layout(std430, set = 0, binding = 14) readonly buffer TexelBuffer { uint texels[]; };
 // Shading normals (common/kernel/shading_normal.glsl); a placeholder without them.
 layout(std430, set = 0, binding = 15) readonly buffer TriangleShadingBuffer { TriangleShading triangle_shading[]; };
+// The environment map (common/kernel/environment.glsl); placeholders without one.
+layout(std430, set = 0, binding = 16) readonly buffer EnvironmentRadianceBuffer { float env_texels[]; };
+layout(std430, set = 0, binding = 17) readonly buffer EnvironmentTableBuffer { float env_tables[]; };
+vec3 environment_texel(uint i) {
+  return vec3(env_texels[3u * i], env_texels[3u * i + 1u], env_texels[3u * i + 2u]);
+}
+float environment_table(uint i) { return env_tables[i]; }
 uint rng_state;  // the random-number state of one invocation
 uvec4 sampler_state;  // the sampler's state of one invocation (common/kernel/sampler.glsl)
 

@@ -7,11 +7,12 @@
 #include "common/kernel/camera.glsl"
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/texture.glsl"
+#include "common/kernel/environment.glsl"
 
 // Eq. (2): the radiance leaving the first surface towards the camera is its own.
 vec3 Li(Ray ray) {
   Hit hit = intersect_scene(ray, kInfinity);
-  if (hit.kind == kPrimNone) return params.sky;
+  if (hit.kind == kPrimNone) return sky_radiance(ray.dir);  // --sky, or the environment map
   Surface surface = surface_at(ray, hit);
   Material material = surface_material(surface);
   // Le: an emitter shines from its front face, or from both when double-sided.

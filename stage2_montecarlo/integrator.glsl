@@ -12,6 +12,7 @@
 #include "common/kernel/shading_normal.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/roulette.glsl"
+#include "common/kernel/environment.glsl"
 
 vec3 Li(Ray ray) {
   vec3 L = vec3(0.0f);     // radiance gathered along the path
@@ -19,8 +20,8 @@ vec3 Li(Ray ray) {
   for (uint depth = 0u;; depth++) {
     if (at_depth_cap(depth)) break;  // a safety net far beyond what roulette reaches
     Hit hit = intersect_scene(ray, kInfinity);
-    if (hit.kind == kPrimNone) {
-      L += beta * vec3(params.sky);
+    if (hit.kind == kPrimNone) {  // the sky: --sky's colour, or the environment map
+      L += beta * sky_radiance(ray.dir);
       break;
     }
     Surface surface = surface_at(ray, hit);

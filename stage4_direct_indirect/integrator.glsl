@@ -23,7 +23,7 @@ vec3 Li(Ray ray) {
     Hit hit = intersect_scene(ray, kInfinity);
     if (hit.kind == kPrimNone) {
       // The sky is a light too: after a non-delta bounce light sampling counted it.
-      if (counts_emission(depth, after_delta)) L += beta * vec3(params.sky);
+      if (counts_emission(depth, after_delta)) L += beta * sky_radiance(ray.dir);
       break;
     }
     Surface surface = surface_at(ray, hit);

@@ -39,7 +39,7 @@ vec3 Li(Ray ray) {
     if (hit.kind == kPrimNone) {
       // The sky is a light too: weighed against sampling it as one.
       float w = in_full ? 1.0f : power_heuristic(bsdf_pdf, sky_light_pdf(from_n, ray.dir));
-      L += beta * vec3(params.sky) * w;
+      L += beta * sky_radiance(ray.dir) * w;
       break;
     }
     Surface surface = surface_at(ray, hit);

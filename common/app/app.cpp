@@ -14,6 +14,7 @@
 #include "common/base/error.h"
 #include "common/render/interrupt.h"
 #include "common/render/memory.h"
+#include "common/scene/environment.h"
 #include "common/scene/scene_loading.h"
 #include "common/scene/scene_sanity.h"
 
@@ -137,7 +138,7 @@ void apply_aspect_ratio(const Scene& scene, Options& options, const char* stage)
 // with no light at all the image is black.
 void warn_about_lights(const Scene& scene, const Options& options, const Stage& stage) {
   const char* name = stage.info.name;
-  const bool sky = options.render.sky != glm::vec3(0.0f);
+  const bool sky = options.render.sky != glm::vec3(0.0f) || scene.environment;
   const bool area_lights = scene.lights.size() > scene.point_lights.size();
   if (!scene.point_lights.empty() && !stage.info.sees_point_lights) {
     std::fprintf(stderr,
@@ -149,7 +150,7 @@ void warn_about_lights(const Scene& scene, const Options& options, const Stage& 
   if (!stage.info.every_surface_emits && !sky && !area_lights && scene.point_lights.empty()) {
     std::fprintf(stderr,
                  "%s: %s has no light (no emissive material, no KHR_lights_punctual light) and --sky is 0,0,0: the "
-                 "image will be black; light it with --sky 1,1,1 (a uniform white sky) or give a material emission\n",
+                 "image will be black; light it with --sky 1,1,1 (a uniform white sky), --env MAP.hdr, or give a material emission\n",
                  name, scene.name.c_str());
   }
 }
@@ -159,9 +160,19 @@ void warn_about_lights(const Scene& scene, const Options& options, const Stage& 
 Scene load_stage_scene(Options& options, const Stage& stage) {
   set_scene_memory_budget(available_memory_bytes());  // the glTF loader's triangle budget (scene_sanity.h)
   Scene scene = load_scene(options.scene, options.gltf_scene);
+  if (!options.env.empty()) {
+    MemoryStep step("reading the environment map '" + options.env + "'");
+    scene.environment = load_environment(options.env, options.env_strength, options.env_rotate);
+  }
   choose_camera(scene, options, stage.info.name);
   apply_aspect_ratio(scene, options, stage.info.name);
   warn_about_lights(scene, options, stage);
+  if (scene.environment && stage.info.sees_point_lights) {  // light sampling (stages 4, 5): say how it is picked
+    std::fprintf(stderr, "%s: environment map %s (%u x %u, mean luminance %.4g): light sampling picks it with probability %.3g%s\n",
+                 stage.info.name, scene.environment->path.c_str(), scene.environment->width, scene.environment->height,
+                 scene.environment->mean_luminance, double(sky_pick_probability(scene, glm::vec3(0.0f))),
+                 scene.lights.empty() ? " (the scene has no other light)" : ", the scene's other lights by their power");
+  }
   return scene;
 }
 

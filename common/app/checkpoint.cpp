@@ -11,6 +11,7 @@
 
 #include "common/app/replace_file.h"
 #include "common/base/error.h"
+#include "common/scene/environment.h"
 #include "common/scene/scene.h"
 
 namespace pt {
@@ -71,6 +72,10 @@ std::uint64_t scene_hash(const Scene& scene) {
   if (!scene.triangle_shading.empty()) f.add_vector(scene.triangle_shading);  // keeps older keys
   f.add_vector(scene.textures);
   f.add_vector(scene.texels);
+  if (scene.environment) {  // the map as the kernel reads it (radiance x strength)
+    f.add_vector(scene.environment->radiance);
+    f.add(&scene.environment->width, sizeof scene.environment->width);
+  }
   return f.h;
 }
 

@@ -14,6 +14,7 @@
 #include "common/app/checkpoint.h"
 #include "common/app/exr_file.h"
 #include "common/base/error.h"
+#include "common/scene/environment.h"
 #include "common/scene/scene.h"
 
 namespace pt {
@@ -175,6 +176,12 @@ FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSe
                 double(s.sky.x), double(s.sky.y), double(s.sky.z), s.roulette == kRouletteThroughput ? "throughput" : "fixed",
                 unsigned(s.depth_cap), s.sampler == kSamplerIndependent ? "independent" : "sobol", hex64(h).c_str());
   id.options = text;
+  if (scene.environment) {  // its content is in the scene's hash; here what a reader can check
+    char env[160];
+    std::snprintf(env, sizeof env, ", env %.9g x strength %.9g, rotate %.9g", double(scene.environment->mean_luminance),
+                  double(scene.environment->strength), double(scene.environment->rotate_degrees));
+    id.options += env;
+  }
   id.seed = s.seed;
   return id;
 }

@@ -83,6 +83,14 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
                "frame the scene's bounds from a raised three-quarter view even where the file has a camera");
   app.add_option("--out", o.out, "output image: .exr (linear float), .png (8-bit sRGB) or .hdr")->capture_default_str();
   app.add_option("--sky", sky, "radiance R,G,B of rays that leave the scene")->capture_default_str();
+  app.add_option("--env", o.env,
+                 "equirectangular HDR environment map (.hdr or .exr) lighting the scene instead of --sky; "
+                 "Blender's orientation for a world Environment Texture, +Y up")
+      ->type_name("PATH");
+  app.add_option("--env-strength", o.env_strength, "scales the environment map's radiance")->capture_default_str();
+  app.add_option("--env-rotate", o.env_rotate,
+                 "turns the environment map about the up axis by DEGREES (as Blender's Mapping node's Z rotation)")
+      ->capture_default_str()->type_name("DEGREES");
   app.add_option("--exposure", o.exposure, "exposure in stops applied to .png output")->capture_default_str();
   app.add_option("--threads", o.threads, "CPU backend threads (0 = all cores)")
       ->capture_default_str()
@@ -139,6 +147,18 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.render.sky = parse_rgb(sky, "--sky");
+  if (!o.env.empty() && o.render.sky != glm::vec3(0.0f)) {
+    throw Error(kExitBadOption, "--env and --sky both light the scene from infinitely far: use one (the map replaces the uniform sky)");
+  }
+  for (const char* option : {"--env-strength", "--env-rotate"}) {
+    if (o.env.empty() && app.count(option)) {
+      throw Error(kExitBadOption, std::string(option) + " applies to an environment map: give --env PATH too");
+    }
+  }
+  if (!std::isfinite(o.env_strength) || o.env_strength < 0.0f) {
+    throw Error(kExitBadOption, "--env-strength must be a finite number >= 0 (1 keeps the map's own radiance)");
+  }
+  if (!std::isfinite(o.env_rotate)) throw Error(kExitBadOption, "--env-rotate must be a finite number of degrees");
   if (o.frame && !o.camera.empty())
     throw Error(kExitBadOption, "--frame and --camera both choose the view: use one");
   o.width_given = app.count("--width") > 0;

@@ -37,6 +37,9 @@ struct Options {
   bool keep_halves = false;               // --keep-halves: the .exr keeps the halves' sums (film_file.h)
   std::string camera;                     // --camera N|NAME: which of the file's cameras ("" = the first met)
   std::string gltf_scene;                 // --gltf-scene N|NAME: which of the file's scenes ("" = its default)
+  std::string env;                        // --env PATH: an HDR environment map ("" = none: --sky)
+  float env_strength = 1.0f;              // --env-strength S: scales its radiance
+  float env_rotate = 0.0f;                // --env-rotate DEGREES: its turn about +Y (environment.glsl)
   bool frame = false;                     // --frame: frame the scene's bounds even where the file has a camera
   bool width_given = false;               // --width / --height were on the command line (a camera's
   bool height_given = false;              // aspectRatio sets the height when only the width is)

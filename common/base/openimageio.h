@@ -45,6 +45,11 @@ class ImageCodec {
   virtual bool encode_rgb(const std::string& extension, int width, int height, const void* pixels,
                           const ImageAttributes& attributes, std::vector<unsigned char>& bytes,
                           std::string& why) const = 0;
+  // Reads the image file `path` (an .hdr or .exr environment map: issue #49) as float RGB,
+  // rows from the image's top: a grey image is repeated into R, G and B, a fourth channel
+  // dropped. false: `why` says why.
+  virtual bool read_float_rgb(const std::string& path, int& width, int& height, std::vector<float>& rgb,
+                              std::string& why) const = 0;
 };
 
 // The module's one entry point (extern "C", so dlsym finds it by this name).

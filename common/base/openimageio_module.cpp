@@ -72,6 +72,35 @@ class OiioCodec final : public ImageCodec {
     if (why.empty()) why = "the image writer failed";
     return false;
   }
+
+  bool read_float_rgb(const std::string& path, int& width, int& height, std::vector<float>& rgb,
+                      std::string& why) const override {
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) {
+      why = OIIO::geterror();
+      if (why.empty()) why = "OpenImageIO cannot open it";
+      return false;
+    }
+    const OIIO::ImageSpec& spec = input->spec();
+    width = spec.width, height = spec.height;
+    const int channels = spec.nchannels;
+    if (width <= 0 || height <= 0 || channels <= 0 || spec.depth > 1) {
+      why = "it holds no 2D image";
+      return false;
+    }
+    std::vector<float> all(std::size_t(width) * std::size_t(height) * std::size_t(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, all.data())) {
+      why = input->geterror();
+      if (why.empty()) why = "the image reader failed";
+      return false;
+    }
+    input->close();
+    rgb.resize(std::size_t(width) * std::size_t(height) * 3);
+    for (std::size_t i = 0, n = std::size_t(width) * std::size_t(height); i < n; i++) {
+      for (int c = 0; c < 3; c++) rgb[3 * i + c] = all[i * channels + (channels >= 3 ? c : 0)];
+    }
+    return true;
+  }
 };
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "common/kernel/texture.glsl"
 #include "common/kernel/light_sample.glsl"
 #include "common/kernel/punctual_light.glsl"
+#include "common/kernel/environment.glsl"
 
 // The first entry whose cumulative probability exceeds u (binary search).
 uint pick_light(float u) {
@@ -103,10 +104,17 @@ LightSample sample_sphere_light(uint index, vec3 p, vec2 u, float pick) {
   return LightSample(wi, dist, vec3(materials[s.material].emission) / pdf, pdf);
 }
 
-// The uniform sky: a cosine-weighted direction about the normal n, density cos / pi; for
-// n = 0 (a lobe that transmits, bsdf.glsl light_sample_normal) uniform over the whole
-// sphere, density 1 / (4 pi).
+// The sky as a light. An environment map: a direction drawn from its distribution
+// (environment.glsl), whatever n. The uniform sky: a cosine-weighted direction about the
+// normal n, density cos / pi; for n = 0 (a lobe that transmits, bsdf.glsl
+// light_sample_normal) uniform over the whole sphere, density 1 / (4 pi).
 LightSample sample_sky(vec3 n, vec2 u, float pick) {
+  if (has_environment()) {
+    EnvironmentSample e = sample_environment(u);
+    float pdf = e.pdf * pick;
+    if (!(pdf > 0.0f)) return no_light();
+    return LightSample(e.wi, kInfinity, e.radiance / pdf, pdf);
+  }
   if (has_feature(kFeatureRoughGlass) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) {
     float z = 1.0f - 2.0f * u.x;
     float r = sqrt(max(0.0f, 1.0f - z * z));
@@ -253,6 +261,7 @@ float light_pdf(vec3 p, vec3 wi, Hit hit, float dist) {
 // The pdf with which sample_light picks the sky in direction wi from a point whose normal
 // (on the side light comes from) is n.
 float sky_light_pdf(vec3 n, vec3 wi) {
+  if (has_environment()) return sky_pick_probability() * environment_pdf(wi);
   if (has_feature(kFeatureRoughGlass) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) {
     return sky_pick_probability() / (4.0f * kPi);  // the whole sphere (sample_sky)
   }

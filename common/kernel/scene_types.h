@@ -101,7 +101,8 @@ const uint kFeatureAlphaMask = 1u << 12u;       // alphaMode MASK: holes rays pa
 const uint kFeatureDielectric = 1u << 13u;      // glTF's dielectric: specular layer over a base
 const uint kFeatureShadingNormals = 1u << 14u;  // vertex normals, normal maps (shading_normal.glsl)
 const uint kFeatureRoughGlass = 1u << 15u;      // rough dielectric transmission (kMaterialRoughGlass)
-const uint kFeatureAll = (1u << 16u) - 1u;
+const uint kFeatureEnvironment = 1u << 16u;     // the sky is an HDR image (environment.glsl); with kFeatureSky
+const uint kFeatureAll = (1u << 17u) - 1u;
 
 // Textures (common/kernel/texture.glsl, issue #19): what a sampler does at the edges and
 // between texels (glTF's sampler wrapS / wrapT and magFilter), and "no texture".
@@ -216,6 +217,12 @@ struct FrameParams {
   float scene_radius;      // the radius of the scene's bounding sphere (ray offsets scale with it)
   uint accel;              // kAccel*: the BVH or every triangle (the same hits)
   uint sampler_kind;       // kSampler*: which numbers feed the estimator (sampler.glsl)
+  // The environment map (kFeatureEnvironment, common/kernel/environment.glsl): its size in
+  // texels (0 without one) and its turn about +Y (--env-rotate) as a cosine and a sine.
+  uint env_width;
+  uint env_height;
+  float env_cos;
+  float env_sin;
 };
 
 // One entry of the texture table: an image in texels[] (8-bit RGBA, R in the low byte,
@@ -336,7 +343,7 @@ static_assert(offsetof(PointLight, intensity) == 16 && offsetof(PointLight, dire
 static_assert(sizeof(Light) == 16);
 static_assert(sizeof(Camera) == 64);
 static_assert(offsetof(Camera, forward) == 16 && offsetof(Camera, right) == 32 && offsetof(Camera, up) == 48);
-static_assert(sizeof(FrameParams) == 144);
+static_assert(sizeof(FrameParams) == 160 && offsetof(FrameParams, env_width) == 144);
 static_assert(offsetof(FrameParams, sky) == 64 && offsetof(FrameParams, width) == 80);
 static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParams, seed) == 112);
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);

@@ -40,6 +40,8 @@ struct KernelScene {
   const Texture* textures = nullptr;
   const uint* texels = nullptr;
   const TriangleShading* triangle_shading = nullptr;  // shading normals, or nullptr without them
+  const float* environment_radiance = nullptr;  // the environment map (common/scene/environment.h),
+  const float* environment_tables = nullptr;    // or nullptr without one
 };
 
 // A stage's kernel compiled as C++ (cpu/kernel_entry.h).

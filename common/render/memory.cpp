@@ -111,6 +111,7 @@ std::uint64_t scene_array_bytes(const Scene& s) {
   b = add(b, mul(s.triangle_shading.size(), sizeof(TriangleShading)));
   b = add(b, mul(s.textures.size(), sizeof(Texture)));
   b = add(b, mul(s.texels.size(), sizeof(uint)));
+  if (s.environment) b = add(b, mul(s.environment->radiance.size() + s.environment->table.size(), sizeof(float)));
   return add(b, kGpuUniformTriangles);
 }
 

@@ -12,6 +12,7 @@
 
 #include "common/base/error.h"
 #include "common/render/interrupt.h"
+#include "common/scene/environment.h"
 #include "common/scene/scene.h"
 
 namespace pt {
@@ -71,6 +72,12 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   p.light_count = uint(scene.lights.size());
   p.accel = s.accel == kAccelBvh && !scene.triangles.empty() ? kAccelBvh : kAccelNone;
   p.sky_pick = sky_pick_probability(scene, s.sky);
+  p.env_cos = 1.0f, p.env_sin = 0.0f;
+  if (scene.environment) {  // environment.glsl: its size, and its turn about +Y
+    p.env_width = scene.environment->width, p.env_height = scene.environment->height;
+    const double turn = double(scene.environment->rotate_degrees) * M_PI / 180.0;
+    p.env_cos = float(std::cos(turn)), p.env_sin = float(std::sin(turn));
+  }
   Bounds b = scene.bounds();
   p.scene_radius = b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f);
   return p;

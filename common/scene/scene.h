@@ -3,6 +3,7 @@
 // Loaded from glTF (gltf_loader.cpp) or built in (builtin_scenes.cpp).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "common/kernel/scene_types.h"
+#include "common/scene/environment.h"
 
 namespace pt {
 
@@ -64,6 +66,9 @@ struct Scene {
   // Shading normals (common/kernel/shading_normal.glsl): empty, or parallel to triangles
   // (add_triangle keeps it so); read only for triangles flagged kTriangleShadingNormals.
   std::vector<TriangleShading> triangle_shading;
+  // The environment map (--env; common/scene/environment.h), or none: then the sky is
+  // --sky's uniform colour. Set after loading (load_stage_scene); shared, never changed.
+  std::shared_ptr<const Environment> environment;
 
   Bounds bounds() const;  // `region` when set, else the shapes' bounds
   // Appends a material and returns its index.

@@ -74,6 +74,7 @@ uint scene_feature_mask(const Scene& scene, glm::vec3 sky) {
   }
   if (!scene.point_lights.empty()) mask |= kFeaturePointLights;
   if (sky.x > 0.0f || sky.y > 0.0f || sky.z > 0.0f) mask |= kFeatureSky;
+  if (scene.environment) mask |= kFeatureSky | kFeatureEnvironment;
   return mask;
 }
 
@@ -90,7 +91,7 @@ std::string feature_names(uint mask) {
        {kFeatureTextures, "textures"}, {kFeatureAlphaMask, "alpha masks"},
        {kFeatureShadingNormals, "shading normals"}},
       {{kFeatureTriangleLights, "emissive triangles"}, {kFeatureSphereLights, "emissive spheres"},
-       {kFeaturePointLights, "punctual lights"}, {kFeatureSky, "sky"}}};
+       {kFeaturePointLights, "punctual lights"}, {kFeatureSky, "sky"}, {kFeatureEnvironment, "environment map"}}};
   std::string s;
   for (int g = 0; g < 3; g++) {
     std::string part;

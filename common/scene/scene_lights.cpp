@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/base/srgb.h"
+#include "common/scene/environment.h"
 
 namespace pt {
 
@@ -103,7 +104,8 @@ void build_light_table(Scene& scene) {
 }
 
 float sky_pick_probability(const Scene& scene, glm::vec3 sky) {
-  float sky_lum = luminance(sky);
+  // An environment map stands for a uniform sky of its mean luminance (the same power).
+  float sky_lum = scene.environment ? float(scene.environment->mean_luminance) : luminance(sky);
   if (!(sky_lum > 0.0f)) return 0.0f;
   if (scene.lights.empty()) return 1.0f;
   double lights = scene.light_power;

@@ -1,0 +1,161 @@
+// The environment map on the host (see environment.h): reading the image, and the tables of
+// the piecewise-constant 2D distribution over it that common/kernel/environment.glsl samples
+// (pbrt's PiecewiseConstant2D: a marginal distribution over rows, a conditional one per row).
+// Beyond the article: issue #49, docs/environment.md.
+#include "common/scene/environment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "common/base/error.h"
+#include "common/base/openimageio.h"
+
+namespace pt {
+
+namespace {
+
+double luminance_of(const float* rgb) {
+  return 0.2126 * double(rgb[0]) + 0.7152 * double(rgb[1]) + 0.0722 * double(rgb[2]);
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+std::vector<float> environment_weights(const std::vector<float>& rgb, uint width, uint height) {
+  const std::size_t w = width, h = height;
+  std::vector<double> lum(w * h);
+  for (std::size_t i = 0; i < w * h; i++) lum[i] = luminance_of(&rgb[3 * i]);
+  // The bilinear lookup (environment_radiance_uv) spreads each texel over its neighbours'
+  // cells: averaged over one cell, its neighbours weigh 1/8 and itself 6/8 along each axis
+  // (u wraps around, v is clamped at the poles). So a texel is drawn wherever the lookup can
+  // return light, and the sampling stays unbiased next to a single bright texel.
+  const double tap[3] = {0.125, 0.75, 0.125};
+  std::vector<float> weights(w * h);
+  for (std::size_t y = 0; y < h; y++) {
+    // The row's solid angle per unit of v: the mean of sin(theta) over the row.
+    const double theta0 = M_PI * double(y) / double(h), theta1 = M_PI * double(y + 1) / double(h);
+    const double mean_sin = (std::cos(theta0) - std::cos(theta1)) / (theta1 - theta0);
+    for (std::size_t x = 0; x < w; x++) {
+      double sum = 0.0;
+      for (int dy = -1; dy <= 1; dy++) {
+        const std::size_t yy = std::size_t(std::clamp<long>(long(y) + dy, 0, long(h) - 1));
+        for (int dx = -1; dx <= 1; dx++) {
+          const std::size_t xx = (x + w + std::size_t(dx + 1) - 1) % w;
+          sum += tap[dy + 1] * tap[dx + 1] * lum[yy * w + xx];
+        }
+      }
+      weights[y * w + x] = float(sum * mean_sin);
+    }
+  }
+  return weights;
+}
+
+std::shared_ptr<const Environment> make_environment(std::string name, uint width, uint height,
+                                                    std::vector<float> rgb, float strength, float rotate_degrees) {
+  auto env = std::make_shared<Environment>();
+  env->path = std::move(name);
+  env->width = width, env->height = height;
+  env->strength = strength, env->rotate_degrees = rotate_degrees;
+  const std::size_t w = width, h = height, n = w * h;
+  std::size_t negative = 0;
+  for (std::size_t i = 0; i < 3 * n; i++) {
+    if (!std::isfinite(rgb[i])) {
+      const std::size_t t = i / 3;
+      throw Error(kExitBadScene, "--env '" + env->path + "': texel (" + std::to_string(t % w) + ", " +
+                                     std::to_string(t / w) + ") is not a finite number; repair the image");
+    }
+    if (rgb[i] < 0.0f) rgb[i] = 0.0f, negative++;
+    rgb[i] *= strength;
+  }
+  if (negative) {
+    std::fprintf(stderr, "warning: --env '%s': %zu negative channel value(s) taken as 0 (radiance is never negative)\n",
+                 env->path.c_str(), negative);
+  }
+  env->radiance = std::move(rgb);
+
+  // The pdf over (u, v), normalised to integrate to 1 over the unit square.
+  std::vector<float> f = environment_weights(env->radiance, width, height);
+  double total = 0.0;
+  std::vector<double> row_sum(h, 0.0);
+  for (std::size_t y = 0; y < h; y++) {
+    for (std::size_t x = 0; x < w; x++) row_sum[y] += double(f[y * w + x]);
+    total += row_sum[y];
+  }
+  const bool black = !(total > 0.0);
+  env->table.resize(n + (h + 1) + h * (w + 1));
+  for (std::size_t i = 0; i < n; i++) env->table[i] = black ? 1.0f : float(double(f[i]) * double(n) / total);
+  // The rows' cumulative distribution, then each row's over its columns; the last entry of
+  // each is exactly 1. A black map (or row) is uniform: nothing there is drawn anyway.
+  float* marginal = env->table.data() + n;
+  double c = 0.0;
+  marginal[0] = 0.0f;
+  for (std::size_t y = 0; y < h; y++) {
+    c += black ? 1.0 / double(h) : row_sum[y] / total;
+    marginal[y + 1] = float(std::min(c, 1.0));
+  }
+  marginal[h] = 1.0f;
+  for (std::size_t y = 0; y < h; y++) {
+    float* row = env->table.data() + n + (h + 1) + y * (w + 1);
+    double r = 0.0;
+    row[0] = 0.0f;
+    for (std::size_t x = 0; x < w; x++) {
+      r += row_sum[y] > 0.0 ? double(f[y * w + x]) / row_sum[y] : 1.0 / double(w);
+      row[x + 1] = float(std::min(r, 1.0));
+    }
+    row[w] = 1.0f;
+  }
+
+  // The mean luminance over the sphere: each texel's luminance times its solid angle.
+  double integral = 0.0;
+  for (std::size_t y = 0; y < h; y++) {
+    const double solid = 2.0 * M_PI / double(w) *
+                         (std::cos(M_PI * double(y) / double(h)) - std::cos(M_PI * double(y + 1) / double(h)));
+    for (std::size_t x = 0; x < w; x++) integral += luminance_of(&env->radiance[3 * (y * w + x)]) * solid;
+  }
+  env->mean_luminance = integral / (4.0 * M_PI);
+  return env;
+}
+
+std::shared_ptr<const Environment> load_environment(const std::string& path, float strength, float rotate_degrees) {
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (ext != ".hdr" && ext != ".exr") {
+    throw Error(kExitBadOption, "--env '" + path +
+                                    "' is not an .hdr or .exr file: an environment map is an equirectangular HDR "
+                                    "image (Radiance .hdr or OpenEXR .exr)");
+  }
+  if (!std::isfinite(strength) || strength < 0.0f) {
+    throw Error(kExitBadOption, "--env-strength must be a finite number >= 0 (1 keeps the map's own radiance)");
+  }
+  if (!std::isfinite(rotate_degrees)) throw Error(kExitBadOption, "--env-rotate must be a finite number of degrees");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw Error(kExitBadScene, "--env '" + path + "': no such file; give the path of an .hdr or .exr image");
+  }
+  std::string why;
+  const ImageCodec* codec = openimageio(why);
+  if (!codec) throw Error(kExitBadScene, "--env '" + path + "' cannot be read: " + why);
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+  if (!codec->read_float_rgb(path, width, height, rgb, why)) {
+    for (char& ch : why) ch = (ch == '\n' || ch == '\r') ? ' ' : ch;
+    if (why.size() > 160) why = why.substr(0, 160) + "...";
+    throw Error(kExitBadScene, "--env '" + path + "' cannot be read (" + why + "); give an intact .hdr or .exr image");
+  }
+  if (width < 2 || height < 1) {
+    throw Error(kExitBadScene, "--env '" + path + "' is " + std::to_string(width) + " x " + std::to_string(height) +
+                                   " texels: too small for a map of the sphere");
+  }
+  if (width != 2 * height) {
+    std::fprintf(stderr, "warning: --env '%s' is %d x %d, not 2:1; it is read as equirectangular all the same\n",
+                 path.c_str(), width, height);
+  }
+  return make_environment(path, uint(width), uint(height), std::move(rgb), strength, rotate_degrees);
+}
+
+}  // namespace pt
