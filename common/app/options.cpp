@@ -147,6 +147,9 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
     throw Error(kExitBadOption, what.substr(0, what.find('\n')) + "; run " + stage.name + " --help for the options");
   }
   o.render.sky = parse_rgb(sky, "--sky");
+  if (app.count("--env") && o.env.empty()) {
+    throw Error(kExitBadOption, "--env is empty: give the path of an .hdr or .exr environment map");
+  }
   if (!o.env.empty() && o.render.sky != glm::vec3(0.0f)) {
     throw Error(kExitBadOption, "--env and --sky both light the scene from infinitely far: use one (the map replaces the uniform sky)");
   }

@@ -2,6 +2,7 @@
 // interface, decoding glTF's PNG and JPEG textures from memory and writing .png and .hdr
 // images. Loaded by openimageio() on first use; nothing else links OpenImageIO.
 #include <memory>
+#include <string>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -86,6 +87,12 @@ class OiioCodec final : public ImageCodec {
     const int channels = spec.nchannels;
     if (width <= 0 || height <= 0 || channels <= 0 || spec.depth > 1) {
       why = "it holds no 2D image";
+      return false;
+    }
+    // A header's size is checked before the texels are allocated (a damaged or forged file).
+    if (width > 65536 || height > 32768) {
+      why = "its header says " + std::to_string(width) + " x " + std::to_string(height) +
+            " texels, more than an environment map may have (65536 x 32768)";
       return false;
     }
     std::vector<float> all(std::size_t(width) * std::size_t(height) * std::size_t(channels));

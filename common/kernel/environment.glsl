@@ -90,7 +90,7 @@ uint environment_find(uint first, uint n, float u) {
 // divided by the Jacobian 2 pi^2 sin(theta) of the mapping to directions.
 float environment_pdf(vec3 d) {
   vec3 m = world_to_map(d);
-  float sin_theta = sqrt(max(0.0f, 1.0f - m.y * m.y));
+  float sin_theta = length(vec2(m.x, m.z));  // not sqrt(1 - y^2), which loses its digits near the poles
   if (!(sin_theta > 0.0f)) return 0.0f;
   vec2 uv = environment_uv(m);
   uint x = min(uint(uv.x * float(params.env_width)), params.env_width - 1u);

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Draws the book's figures (docs/monte_carlo.md and the stage chapters): solid angle, the
-change from area to solid angle, Malley's cosine sampling, the MIS weights, and the error
+change from area to solid angle, Malley's cosine sampling, the MIS weights, the environment
+map's orientation and sampling density (environment.py), and the error
 against samples per pixel from docs/results/convergence.csv (the Cornell box, the box
 furnace). Not part of the article: the pictures beside it. Run by `./tutorial docs` (needs Debian's python3-matplotlib).
 usage: docs/figures/make_figures.py [--out docs/images/figures] [--results docs/results]"""
@@ -19,6 +20,7 @@ except ImportError:
     sys.exit("make_figures.py: matplotlib is missing: install python3-matplotlib "
              "(apt-get install python3-matplotlib) and run it with /usr/bin/python3")
 
+import environment  # noqa: E402
 import geometry  # noqa: E402
 import plots  # noqa: E402
 
@@ -50,6 +52,8 @@ def main():
     save(geometry.area_to_solid_angle(), a.out, "area_to_solid_angle.png")
     save(geometry.malley(), a.out, "malley_cosine_sampling.png")
     save(plots.mis_weights(), a.out, "mis_weights.png")
+    save(environment.orientation(), a.out, "env_orientation.png")  # docs/environment.md
+    save(environment.density(), a.out, "env_density.png")
     conv = os.path.join(a.results, "convergence.csv")
     if not os.path.isfile(conv):
         sys.exit(f"make_figures.py: {conv} is missing: run ./tutorial bench first, or give --results")

@@ -41,7 +41,23 @@ const Case kCases[] = {
     {PT_SOURCE_DIR "/tests/data/gltf/tex_seed.glb", glm::vec3(0.3f)},  // textures, vertex colours
     {PT_SOURCE_DIR "/tests/data/gltf/tex_mask.gltf", glm::vec3(0.3f)},  // alpha masks
     {"builtin:every_feature", glm::vec3(0.1f)},  // shading normals, with everything else
+    {"environment", glm::vec3(0.0f)},  // the diffuse sphere under an environment map, below
 };
+
+// builtin:sphere under a small environment map (common/scene/environment.h): a sky
+// gradient with one bright texel, turned by 30 degrees.
+Scene environment_case() {
+  Scene scene = make_builtin_scene("sphere");
+  const uint w = 16, h = 8;
+  std::vector<float> rgb(3 * w * h);
+  for (uint i = 0; i < w * h; i++) {
+    const float up = 1.0f - float(i / w) / float(h);
+    rgb[3 * i] = 0.2f * up, rgb[3 * i + 1] = 0.3f * up, rgb[3 * i + 2] = 0.5f * up;
+  }
+  for (int c = 0; c < 3; c++) rgb[3 * (2 * w + 11) + c] = 40.0f;
+  scene.environment = make_environment("gradient", w, h, rgb, 1.0f, 30.0f);
+  return scene;
+}
 
 // The Cornell box whose boxes have glTF files' materials: the short one a rough dielectric
 // mixed with metal, the tall one a smooth dielectric (a delta layer over its base); and a
@@ -76,6 +92,7 @@ Scene transmission_case() {
 Scene load_case(const Case& c) {
   if (std::strcmp(c.scene, "gltf") == 0) return gltf_case();
   if (std::strcmp(c.scene, "transmission") == 0) return transmission_case();
+  if (std::strcmp(c.scene, "environment") == 0) return environment_case();
   if (std::strcmp(c.scene, "mixed") != 0) return load_scene(c.scene);
   Scene scene = make_builtin_scene("cornell");
   // The boxes (the last 24 triangles): the short one a mix of rough metal and diffuse,

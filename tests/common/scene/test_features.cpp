@@ -22,7 +22,12 @@ TEST_CASE("features: built-in and shipped scenes report what they use", "[featur
   CHECK(scene_features(make_builtin_scene("smallpt"), glm::vec3(0.0f)) == "spheres; diffuse, mirror, glass; emissive spheres");
   CHECK(scene_features(make_builtin_scene("floor_small_light"), glm::vec3(0.0f)) == "triangles; diffuse; emissive triangles");
   CHECK(scene_features(make_builtin_scene("floor_large_light"), glm::vec3(0.0f)) == "triangles; diffuse; emissive triangles");
-  CHECK(scene_feature_mask(make_builtin_scene("every_feature"), glm::vec3(0.1f)) == kFeatureAll);
+  CHECK(scene_feature_mask(make_builtin_scene("every_feature"), glm::vec3(0.1f)) == (kFeatureAll & ~kFeatureEnvironment));
+  // An environment map (--env) is the sky too: with it, every feature.
+  Scene lit = make_builtin_scene("every_feature");
+  lit.environment = make_environment("grey", 4, 2, std::vector<float>(24, 0.5f), 1.0f, 0.0f);
+  CHECK(scene_feature_mask(lit, glm::vec3(0.0f)) == kFeatureAll);
+  CHECK(scene_features(lit, glm::vec3(0.0f)).find("sky, environment map") != std::string::npos);
   Scene empty;
   CHECK(scene_features(empty, glm::vec3(0.0f)) == "none; none; none");
 }
