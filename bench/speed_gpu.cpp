@@ -55,10 +55,10 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   const uint32_t groups = uint32_t((count + kRaysPerGroup - 1) / kRaysPerGroup);
   const gpu::Buffer* naive_bindings[gpu::kBindingCount] = {
       &triangles, &unused, &unused, &ray_buffer, &naive_params, &naive_out, &unused, &unused, &unused_uniform, &unused, &unused,
-      &unused,    &unused, &unused, &unused, &unused, &unused, &unused};  // 11-14: textures, 15: shading normals, 16-17: environment (none)
+      &unused,    &unused, &unused, &unused, &unused, &unused, &unused, &unused};  // 11-14: textures, 15: shading normals, 16-17: environment, 18: light guide (none)
   const gpu::Buffer* renderer_bindings[gpu::kBindingCount] = {
       &triangles, &unused, &unused, &ray_buffer, &renderer_params, &renderer_out, &unused, &unused, &uniform.buffer, &unused, &unused,
-      &unused,    &unused, &unused, &unused, &unused, &unused, &unused};
+      &unused,    &unused, &unused, &unused, &unused, &unused, &unused, &unused};
   // Specialised to the scene's features, as the renderer specialises its kernels.
   RayKernel naive(context, naive_raycast_spirv, 0u, naive_bindings, groups);
   RayKernel renderer(context, intersect_raycast_spirv, scene_feature_mask(scene, glm::vec3(0.0f)), renderer_bindings,

@@ -51,6 +51,7 @@ class CpuBackend : public Backend {
     soa_.reset();
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data()};
+    scene_.light_guide = scene.light_guide.data();
     sphere_soa_ = std::make_unique<SphereSoa>(scene.spheres);
     scene_.sphere_soa = sphere_soa_->data.data();
     scene_.sphere_soa_stride = sphere_soa_->stride;

@@ -6,7 +6,8 @@
 // indices (storage; common/scene/bvh.h), 11 to 14 the
 // triangles' attributes, the materials' textures, the texture table and the texels
 // (storage; common/kernel/texture.glsl), 15 the shading normals, 16 and 17 the environment
-// map's radiance and tables (storage; common/kernel/environment.glsl).
+// map's radiance and tables (storage; common/kernel/environment.glsl), 18 the light table's
+// guide (storage; common/kernel/lights.glsl pick_light).
 #pragma once
 
 #include <cstdint>
@@ -17,7 +18,7 @@
 
 namespace pt::gpu {
 
-constexpr uint32_t kBindingCount = 18;
+constexpr uint32_t kBindingCount = 19;
 constexpr uint32_t kParamsBinding = 4;
 constexpr uint32_t kUniformTrianglesBinding = 8;
 constexpr uint32_t kBvhNodesBinding = 9;  // a uniform texel buffer

@@ -78,6 +78,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
     upload(point_lights_, scene.point_lights.data(), lights ? scene.point_lights.size() * sizeof(PointLight) : 0);
     upload(lights_, scene.lights.data(), lights ? scene.lights.size() * sizeof(Light) : 0);
+    upload(light_guide_, scene.light_guide.data(), lights ? scene.light_guide.size() * sizeof(uint) : 0);
     // The BVH, or placeholders when the render searches every triangle (params.accel).
     const bool has_bvh = bvh && !bvh->nodes.empty();
     upload(bvh_nodes_, has_bvh ? bvh->nodes.data() : nullptr, has_bvh ? bvh->nodes.size() * sizeof(BvhNode) : 0,
@@ -130,6 +131,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     need(scene.materials.size(), sizeof(Material), "the scene needs");
     need(scene.point_lights.size(), sizeof(PointLight), "the scene needs");
     need(scene.lights.size(), sizeof(Light), "the scene needs");
+    need(scene.light_guide.size(), sizeof(uint), "the scene needs");
     if (bvh && !bvh->nodes.empty()) {
       need(bvh->nodes.size(), sizeof(BvhNode), "the BVH's nodes need", true);
       need(bvh->indices.size(), sizeof(uint), "the BVH's triangle list needs");
@@ -201,7 +203,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
                                             &output_,    &counters_, &lights_,    &uniform_triangles_,
                                             &bvh_nodes_, &bvh_indices_, &triangle_attributes_, &material_textures_,
                                             &textures_,  &texels_,   &triangle_shading_, &environment_radiance_,
-                                            &environment_tables_};
+                                            &environment_tables_, &light_guide_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
     result.counters[kCounterNonFinitePixel] = kNoPixel;
@@ -334,6 +336,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
   Buffer triangle_attributes_, material_textures_, textures_, texels_;  // bindings 11 to 14
   Buffer triangle_shading_;                                             // binding 15
   Buffer environment_radiance_, environment_tables_;                    // bindings 16 and 17
+  Buffer light_guide_;                                                  // binding 18
 };
 
 }  // namespace

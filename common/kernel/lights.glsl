@@ -20,10 +20,16 @@
 #include "common/kernel/punctual_light.glsl"
 #include "common/kernel/environment.glsl"
 
-// The first entry whose cumulative probability exceeds u (binary search).
+// The first entry whose cumulative probability exceeds u: a binary search between the two
+// entries the guide table (scene.h light_guide, built with the light table) gives for the
+// cell uint(u x light_count), so that a million lights cost a search over a few, not 20
+// steps through cold memory. The same entry as a search over all of them; the cells on
+// either side are searched too, in case this kernel's arithmetic (a double-precision build)
+// rounds u x light_count across a cell's edge where the host's float did not.
 uint pick_light(float u) {
-  uint lo = 0u;
-  uint hi = params.light_count - 1u;
+  uint cell = uint(u * float(params.light_count));
+  uint lo = light_guide_at(cell > 0u ? cell - 1u : 0u);
+  uint hi = min(light_guide_at(min(cell + 2u, params.light_count + 1u)), params.light_count - 1u);
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;
     if (lights[mid].cumulative > u) hi = mid;

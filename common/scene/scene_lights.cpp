@@ -101,6 +101,22 @@ void build_light_table(Scene& scene) {
   // Normalise so that the last cumulative value is exactly 1.
   for (Light& l : scene.lights) l.pick /= float(cumulative), l.cumulative /= float(cumulative);
   if (!scene.lights.empty()) scene.lights.back().cumulative = 1.0f;
+  build_light_guide(scene);
+}
+
+void build_light_guide(Scene& scene) {
+  // Entry k: the first light whose cell uint(cumulative x n) is >= k, the cell computed in
+  // float as pick_light computes u's. The cell grows with its argument, so for a u of cell k
+  // the light pick_light wants (the first whose cumulative exceeds u) is no earlier than
+  // entry k (a light of a lower cell has a cumulative below u) and no later than entry
+  // k + 1 (whose cell is above u's, so its cumulative is above u).
+  const uint n = uint(scene.lights.size());
+  scene.light_guide.assign(std::size_t(n) + 2, n == 0 ? 0u : n - 1u);
+  uint k = 0;
+  for (uint i = 0; i < n; i++) {
+    const uint cell = uint(scene.lights[i].cumulative * float(n));
+    while (k <= cell && k <= n + 1) scene.light_guide[k++] = i;
+  }
 }
 
 float sky_pick_probability(const Scene& scene, glm::vec3 sky) {

@@ -24,6 +24,7 @@ inline void bind_scene(const ::pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
   materials = s.materials.data();
   point_lights = s.point_lights.data();
   lights = s.lights.data();
+  light_guide = s.light_guide.data();
   params.triangle_count = uint(s.triangles.size());
   params.sphere_count = uint(s.spheres.size());
   params.material_count = uint(s.materials.size());

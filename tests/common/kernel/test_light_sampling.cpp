@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "common/scene/analytic_scenes.h"
 #include "common/scene/scene.h"
@@ -203,4 +205,45 @@ TEST_CASE("light sampling: spot and directional lights are picked by their power
   CHECK(s.lights[0].pick == Approx(4.0 / 6.4).epsilon(1e-5));
   CHECK(s.lights[1].pick == Approx(0.4 / 6.4).epsilon(1e-5));
   CHECK(s.lights[2].pick == Approx(2.0 / 6.4).epsilon(1e-5));
+}
+
+TEST_CASE("light sampling: the guide table picks the same light as a search over the whole table",
+          "[stage4][lights]") {
+  // Light tables of 1, 2, 7 and 100,000 emitters of powers spread over ten decades (cells
+  // with no light boundary, and cells with many), and the u where pick_light's answer
+  // changes: every cumulative value and its float neighbours.
+  std::mt19937 rng(pt::test::test_seed(17));
+  std::uniform_real_distribution<float> decade(-5.0f, 5.0f), unit(0.0f, 1.0f);
+  for (int count : {1, 2, 7, 100000}) {
+    pt::Scene s;
+    for (int i = 0; i < count; i++) {
+      const float power = std::pow(10.0f, decade(rng));
+      const float x = float(i % 300), z = float(i / 300);
+      s.add_triangle({x, 1.0f, z}, {x + 0.5f, 1.0f, z}, {x, 1.0f, z + 0.5f},
+                     s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(power))));
+    }
+    pt::build_light_table(s);
+    kernel::bind_scene(s);
+    REQUIRE(s.light_guide.size() == s.lights.size() + 2);
+    // The answer by the definition: the first entry whose cumulative exceeds u.
+    auto first_above = [&](float u) {
+      return uint(std::upper_bound(s.lights.begin(), s.lights.end(), u,
+                                   [](float v, const pt::Light& l) { return v < l.cumulative; }) -
+                  s.lights.begin());
+    };
+    std::vector<float> us = {0.0f, 0x1.fffffep-1f};
+    for (const pt::Light& l : s.lights) {
+      us.push_back(l.cumulative);
+      us.push_back(std::nextafter(l.cumulative, 0.0f));
+      us.push_back(std::nextafter(l.cumulative, 1.0f));
+    }
+    for (int i = 0; i < 100000; i++) us.push_back(unit(rng));
+    int wrong = 0;
+    for (float u : us) {
+      if (!(u < 1.0f)) continue;  // samples are below 1 (kOneMinusEpsilon)
+      wrong += kernel::pick_light(u) != std::min(first_above(u), uint(count - 1));
+    }
+    INFO(count << " lights, " << us.size() << " values of u");
+    CHECK(wrong == 0);
+  }
 }
