@@ -95,16 +95,21 @@ class OiioCodec final : public ImageCodec {
             " texels, more than an environment map may have (65536 x 32768)";
       return false;
     }
-    std::vector<float> all(std::size_t(width) * std::size_t(height) * std::size_t(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, all.data())) {
+    // Every channel (OpenEXR reads a subset of them slower than all), then the first three
+    // into rgb; a grey image's one channel into R, G and B. An RGB image is read in place.
+    const std::size_t n = std::size_t(width) * std::size_t(height);
+    rgb.resize(3 * n);
+    std::vector<float> all(channels == 3 ? 0 : n * std::size_t(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, channels == 3 ? rgb.data() : all.data())) {
       why = input->geterror();
       if (why.empty()) why = "the image reader failed";
       return false;
     }
     input->close();
-    rgb.resize(std::size_t(width) * std::size_t(height) * 3);
-    for (std::size_t i = 0, n = std::size_t(width) * std::size_t(height); i < n; i++) {
-      for (int c = 0; c < 3; c++) rgb[3 * i + c] = all[i * channels + (channels >= 3 ? c : 0)];
+    if (channels != 3) {
+      for (std::size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) rgb[3 * i + c] = all[i * std::size_t(channels) + std::size_t(channels > 3 ? c : 0)];
+      }
     }
     return true;
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <thread>
 
 #include "common/base/error.h"
 #include "common/base/openimageio.h"
@@ -27,32 +28,54 @@ std::string lower(std::string s) {
 
 }  // namespace
 
+namespace {
+
+// Runs body(y0, y1) over the rows [0, h) in one block per core (a 4k x 2k map's tables
+// took 0.43 s on one).
+template <class Body>
+void over_rows(std::size_t h, const Body& body) {
+  const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+  if (threads == 1 || h < 64) return body(std::size_t(0), h);
+  std::vector<std::thread> pool;
+  for (std::size_t t = 0; t < threads; t++) pool.emplace_back(body, h * t / threads, h * (t + 1) / threads);
+  for (std::thread& th : pool) th.join();
+}
+
+}  // namespace
+
 std::vector<float> environment_weights(const std::vector<float>& rgb, uint width, uint height) {
   const std::size_t w = width, h = height;
-  std::vector<double> lum(w * h);
-  for (std::size_t i = 0; i < w * h; i++) lum[i] = luminance_of(&rgb[3 * i]);
   // The bilinear lookup (environment_radiance_uv) spreads each texel over its neighbours'
   // cells: averaged over one cell, its neighbours weigh 1/8 and itself 6/8 along each axis
   // (u wraps around, v is clamped at the poles). So a texel is drawn wherever the lookup can
-  // return light, and the sampling stays unbiased next to a single bright texel.
-  const double tap[3] = {0.125, 0.75, 0.125};
-  std::vector<float> weights(w * h);
-  for (std::size_t y = 0; y < h; y++) {
-    // The row's solid angle per unit of v: the mean of sin(theta) over the row.
-    const double theta0 = M_PI * double(y) / double(h), theta1 = M_PI * double(y + 1) / double(h);
-    const double mean_sin = (std::cos(theta0) - std::cos(theta1)) / (theta1 - theta0);
-    for (std::size_t x = 0; x < w; x++) {
-      double sum = 0.0;
-      for (int dy = -1; dy <= 1; dy++) {
-        const std::size_t yy = std::size_t(std::clamp<long>(long(y) + dy, 0, long(h) - 1));
-        for (int dx = -1; dx <= 1; dx++) {
-          const std::size_t xx = (x + w + std::size_t(dx + 1) - 1) % w;
-          sum += tap[dy + 1] * tap[dx + 1] * lum[yy * w + xx];
-        }
+  // return light, and the sampling stays unbiased next to a single bright texel. The filter
+  // is separable: along u first (each texel's luminance), then along v.
+  std::vector<float> along_u(w * h);
+  over_rows(h, [&](std::size_t y0, std::size_t y1) {
+    std::vector<double> lum(w);
+    for (std::size_t y = y0; y < y1; y++) {
+      for (std::size_t x = 0; x < w; x++) lum[x] = luminance_of(&rgb[3 * (y * w + x)]);
+      for (std::size_t x = 0; x < w; x++) {
+        const double left = lum[x == 0 ? w - 1 : x - 1], right = lum[x + 1 == w ? 0 : x + 1];
+        along_u[y * w + x] = float(0.125 * left + 0.75 * lum[x] + 0.125 * right);
       }
-      weights[y * w + x] = float(sum * mean_sin);
     }
-  }
+  });
+  std::vector<float> weights(w * h);
+  over_rows(h, [&](std::size_t y0, std::size_t y1) {
+    for (std::size_t y = y0; y < y1; y++) {
+      // The row's solid angle per unit of v: the mean of sin(theta) over the row.
+      const double theta0 = M_PI * double(y) / double(h), theta1 = M_PI * double(y + 1) / double(h);
+      const double mean_sin = (std::cos(theta0) - std::cos(theta1)) / (theta1 - theta0);
+      const float* up = &along_u[(y == 0 ? 0 : y - 1) * w];
+      const float* row = &along_u[y * w];
+      const float* down = &along_u[(y + 1 == h ? y : y + 1) * w];
+      for (std::size_t x = 0; x < w; x++) {
+        const double sum = 0.125 * double(up[x]) + 0.75 * double(row[x]) + 0.125 * double(down[x]);
+        weights[y * w + x] = float(sum * mean_sin);
+      }
+    }
+  });
   return weights;
 }
 
@@ -81,15 +104,26 @@ std::shared_ptr<const Environment> make_environment(std::string name, uint width
 
   // The pdf over (u, v), normalised to integrate to 1 over the unit square.
   std::vector<float> f = environment_weights(env->radiance, width, height);
-  double total = 0.0;
-  std::vector<double> row_sum(h, 0.0);
-  for (std::size_t y = 0; y < h; y++) {
-    for (std::size_t x = 0; x < w; x++) row_sum[y] += double(f[y * w + x]);
-    total += row_sum[y];
-  }
+  // Per row: the sum of its weights, and its luminance times its solid angle (for the mean).
+  std::vector<double> row_sum(h, 0.0), row_light(h, 0.0);
+  over_rows(h, [&](std::size_t y0, std::size_t y1) {
+    for (std::size_t y = y0; y < y1; y++) {
+      const double solid = 2.0 * M_PI / double(w) *
+                           (std::cos(M_PI * double(y) / double(h)) - std::cos(M_PI * double(y + 1) / double(h)));
+      double lum = 0.0;
+      for (std::size_t x = 0; x < w; x++) {
+        row_sum[y] += double(f[y * w + x]);
+        lum += luminance_of(&env->radiance[3 * (y * w + x)]);
+      }
+      row_light[y] = lum * solid;
+    }
+  });
+  double total = 0.0, integral = 0.0;
+  for (std::size_t y = 0; y < h; y++) total += row_sum[y], integral += row_light[y];
+  // The mean luminance over the sphere: each texel's luminance times its solid angle.
+  env->mean_luminance = integral / (4.0 * M_PI);
   const bool black = !(total > 0.0);
   env->table.resize(n + (h + 1) + h * (w + 1));
-  for (std::size_t i = 0; i < n; i++) env->table[i] = black ? 1.0f : float(double(f[i]) * double(n) / total);
   // The rows' cumulative distribution, then each row's over its columns; the last entry of
   // each is exactly 1. A black map (or row) is uniform: nothing there is drawn anyway.
   float* marginal = env->table.data() + n;
@@ -100,25 +134,21 @@ std::shared_ptr<const Environment> make_environment(std::string name, uint width
     marginal[y + 1] = float(std::min(c, 1.0));
   }
   marginal[h] = 1.0f;
-  for (std::size_t y = 0; y < h; y++) {
-    float* row = env->table.data() + n + (h + 1) + y * (w + 1);
-    double r = 0.0;
-    row[0] = 0.0f;
-    for (std::size_t x = 0; x < w; x++) {
-      r += row_sum[y] > 0.0 ? double(f[y * w + x]) / row_sum[y] : 1.0 / double(w);
-      row[x + 1] = float(std::min(r, 1.0));
+  over_rows(h, [&](std::size_t y0, std::size_t y1) {
+    for (std::size_t y = y0; y < y1; y++) {
+      for (std::size_t x = 0; x < w; x++) {  // the pdf, normalised to a mean of 1
+        env->table[y * w + x] = black ? 1.0f : float(double(f[y * w + x]) * double(n) / total);
+      }
+      float* row = env->table.data() + n + (h + 1) + y * (w + 1);
+      double r = 0.0;
+      row[0] = 0.0f;
+      for (std::size_t x = 0; x < w; x++) {
+        r += row_sum[y] > 0.0 ? double(f[y * w + x]) / row_sum[y] : 1.0 / double(w);
+        row[x + 1] = float(std::min(r, 1.0));
+      }
+      row[w] = 1.0f;
     }
-    row[w] = 1.0f;
-  }
-
-  // The mean luminance over the sphere: each texel's luminance times its solid angle.
-  double integral = 0.0;
-  for (std::size_t y = 0; y < h; y++) {
-    const double solid = 2.0 * M_PI / double(w) *
-                         (std::cos(M_PI * double(y) / double(h)) - std::cos(M_PI * double(y + 1) / double(h)));
-    for (std::size_t x = 0; x < w; x++) integral += luminance_of(&env->radiance[3 * (y * w + x)]) * solid;
-  }
-  env->mean_luminance = integral / (4.0 * M_PI);
+  });
   return env;
 }
 
