@@ -41,7 +41,7 @@ def stage_section(out_dir, read_keys):
           "passes, the film), *collapsing*: render() handed the binary tree only, its set_scene collapsing it "
           "(what *render* was before issue 50's second round), *+ build*: render() building the BVH too; *walk*: the CPU's wide BVH alone on the same rays; Embree: rtcIntersect1 on them; *round "
           "one*: accel_stage_round1.csv, the section by the build after issue 50's first round (its *render* "
-          "collapsed in set_scene), run side by side with this one; *before issue 50*: accel_stage_before.csv, "
+          "collapsed in set_scene), run side by side with an earlier run of this section (accel_stage_before_guide.csv, before the light pick's guide table); *before issue 50*: accel_stage_before.csv, "
           "the section by the build before either round, run beside round one's." % (
               run.get("command", "pt_bench --section stage"), run.get("date", "?"), run.get("load_before", "?"),
               run.get("load_after", "?"), run.get("machine", "machine not recorded"), run.get("threads", "?"), run.get("embree", "Embree"),
