@@ -209,27 +209,38 @@ def main():
     clear_startup_scene()
     import_scene(args.scene)
     configure(args)
+    render_and_report(args)
+
+
+def render_and_report(args):
+    """Renders the configured scene, saves it to args.out and prints the CYCLES_RENDER line
+    the comparisons read (cpu_s: process_time, user + sys of every thread of this process,
+    during the render call only)."""
     cpu0, wall0 = time.process_time(), time.perf_counter()
     bpy.ops.render.render()
     cpu1, wall1 = time.process_time(), time.perf_counter()
     out = os.path.abspath(args.out)
     os.makedirs(os.path.dirname(out), exist_ok=True)
     bpy.data.images["Render Result"].save_render(out)
-    # process_time: user + sys of every thread of this process, during the render call only.
     print(f"CYCLES_RENDER cpu_s={cpu1 - cpu0:.4f} wall_s={wall1 - wall0:.4f} samples={args.spp} "
           f"threads={args.threads} seed={args.seed} size={args.width}x{args.height} out={out}",
           flush=True)
 
 
-if __name__ == "__main__":
+def run_in_blender(main):
+    """Runs main() so that any failure ends Blender with a non-zero status: Blender ignores a
+    script's exit status in -b mode unless the process itself exits."""
     try:
         main()
     except SystemExit as e:
-        # Blender ignores a script's exit status in -b mode unless the process itself exits.
         sys.stdout.flush()
         os._exit(e.code if isinstance(e.code, int) else 1)
-    except Exception as e:  # noqa: BLE001 (any failure must end Blender with non-zero status)
+    except Exception:  # noqa: BLE001 (any failure must end Blender with non-zero status)
         import traceback
         traceback.print_exc()
         sys.stderr.flush()
         os._exit(1)
+
+
+if __name__ == "__main__":
+    run_in_blender(main)

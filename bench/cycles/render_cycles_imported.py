@@ -9,12 +9,11 @@
 import argparse
 import os
 import sys
-import time
 
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from render_cycles import clear_startup_scene, configure, fail, numpy_aliases  # noqa: E402
+from render_cycles import clear_startup_scene, configure, fail, numpy_aliases, render_and_report, run_in_blender  # noqa: E402
 
 
 def parse_args():
@@ -118,24 +117,8 @@ def main():
             p.inputs["Specular"].default_value = 0.0
     set_sky(sky)
     configure(args)
-    cpu0, wall0 = time.process_time(), time.perf_counter()
-    bpy.ops.render.render()
-    cpu1, wall1 = time.process_time(), time.perf_counter()
-    out = os.path.abspath(args.out)
-    os.makedirs(os.path.dirname(out), exist_ok=True)
-    bpy.data.images["Render Result"].save_render(out)
-    print(f"CYCLES_RENDER cpu_s={cpu1 - cpu0:.4f} wall_s={wall1 - wall0:.4f} samples={args.spp} "
-          f"threads={args.threads} seed={args.seed} size={args.width}x{args.height} out={out}", flush=True)
+    render_and_report(args)
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except SystemExit as e:
-        sys.stdout.flush()
-        os._exit(e.code if isinstance(e.code, int) else 1)
-    except Exception:  # noqa: BLE001 (any failure must end Blender with non-zero status)
-        import traceback
-        traceback.print_exc()
-        sys.stderr.flush()
-        os._exit(1)
+    run_in_blender(main)
