@@ -18,7 +18,6 @@ Writes OUT/sampling_cost.csv, OUT/sun.csv, OUT/load.csv.
   /usr/bin/python3 bench/env/costs.py --bin-dir build-h3/bin --out-dir docs/results/env
 """
 import argparse
-import csv
 import json
 import os
 import sys
@@ -30,6 +29,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "cycles"))
 import env_scenes  # noqa: E402
 from compare_images import read_rgb, rel_mse  # noqa: E402
+from compare_env import write  # noqa: E402 (the CSV writer of the Cycles comparison)
 from compare_renderers import run_timed  # noqa: E402
 from gltf_prepare import REPO, prepare  # noqa: E402
 
@@ -159,16 +159,6 @@ def load(args, world, work):
             f"module's loading {row['map_wall_s']:.3f} s wall, {row['map_cpu_s']:.3f} CPU s")
     return rows
 
-
-def write(path, rows):
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.5g}" if isinstance(v, float) else v) for k, v in r.items()})
 
 
 def main():
