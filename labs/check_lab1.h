@@ -4,6 +4,7 @@
 #include "common/kernel/rng.glsl"  // what both versions use, outside the namespaces below
 #include "common/kernel/intersect.glsl"
 #include "common/kernel/texture.glsl"
+#include "common/kernel/environment.glsl"  // the sky: --sky's colour or the map
 
 namespace reference {
 #include "stage1_raycast/integrator.glsl"
