@@ -178,7 +178,7 @@ FilmIdentity film_identity(const char* stage, const Scene& scene, const RenderSe
   id.options = text;
   if (scene.environment) {  // its content is in the scene's hash; here what a reader can check
     char env[160];
-    std::snprintf(env, sizeof env, ", env %.9g x strength %.9g, rotate %.9g", double(scene.environment->mean_luminance),
+    std::snprintf(env, sizeof env, ", env mean luminance %.9g (strength %.9g), rotate %.9g", double(scene.environment->mean_luminance),
                   double(scene.environment->strength), double(scene.environment->rotate_degrees));
     id.options += env;
   }

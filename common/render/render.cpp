@@ -75,8 +75,8 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
   p.env_cos = 1.0f, p.env_sin = 0.0f;
   if (scene.environment) {  // environment.glsl: its size, and its turn about +Y
     p.env_width = scene.environment->width, p.env_height = scene.environment->height;
-    const double turn = double(scene.environment->rotate_degrees) * M_PI / 180.0;
-    p.env_cos = float(std::cos(turn)), p.env_sin = float(std::sin(turn));
+    const glm::vec2 turn = environment_turn(*scene.environment);
+    p.env_cos = turn.x, p.env_sin = turn.y;
   }
   Bounds b = scene.bounds();
   p.scene_radius = b.empty() ? 1.0f : glm::max(0.5f * glm::length(b.hi - b.lo), 1e-30f);

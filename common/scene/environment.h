@@ -36,9 +36,13 @@ std::shared_ptr<const Environment> make_environment(std::string name, uint width
                                                     std::vector<float> rgb, float strength, float rotate_degrees);
 
 // --env PATH: reads an equirectangular .hdr or .exr (its first three channels; one channel is
-// grey). Throws pt::Error: kExitBadOption for another extension or a bad strength,
-// kExitBadScene for a file that cannot be read or holds no usable image.
+// grey); strength and rotate_degrees as parse_options checked them (finite, strength >= 0).
+// Throws pt::Error: kExitBadOption for another extension, kExitBadScene for a file that
+// cannot be read or holds no usable image.
 std::shared_ptr<const Environment> load_environment(const std::string& path, float strength, float rotate_degrees);
+
+// The map's turn about +Y (rotate_degrees) as (cos, sin): FrameParams env_cos, env_sin.
+glm::vec2 environment_turn(const Environment& env);
 
 // The pdf table's value for texel (x, y): proportional to the map's luminance averaged over
 // the texel (as the bilinear lookup spreads it) times the solid angle of its row.

@@ -17,8 +17,8 @@ inline void bind_scene(const ::pt::Scene& s, glm::vec3 sky = glm::vec3(0.0f)) {
   env_tables = s.environment ? s.environment->table.data() : nullptr;
   params.env_width = s.environment ? s.environment->width : 0u;
   params.env_height = s.environment ? s.environment->height : 0u;
-  params.env_cos = s.environment ? float(std::cos(double(s.environment->rotate_degrees) * M_PI / 180.0)) : 1.0f;
-  params.env_sin = s.environment ? float(std::sin(double(s.environment->rotate_degrees) * M_PI / 180.0)) : 0.0f;
+  const glm::vec2 turn = s.environment ? ::pt::environment_turn(*s.environment) : glm::vec2(1.0f, 0.0f);
+  params.env_cos = turn.x, params.env_sin = turn.y;
   triangles = s.triangles.data();
   spheres = s.spheres.data();
   materials = s.materials.data();
