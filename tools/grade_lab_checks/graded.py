@@ -1,0 +1,141 @@
+"""The slow part of tools/test_grade_lab.py (ctest entry grade_lab; tooling for teachers, not a
+part of the article): labs 2 and 4 graded by tools/grade_lab.py on the fixture submissions,
+each verdict line, the summary, grades.csv and grades.xml checked."""
+import csv
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+from grade_lab_checks.fixtures import lab2_fixtures, lab4_fixtures, plants
+from grade_lab_checks.support import REPO, TIMEOUT, TOOL, expect, written_mutants
+
+
+def grade(lab, subs, out, work, timeout, extra=()):
+    """Grades the folder; returns ({name: verdict line}, the summary line)."""
+    start = time.monotonic()
+    r = subprocess.run([sys.executable, TOOL, str(lab), subs, "--out", out, "--work", work, "--timeout", timeout]
+                       + list(extra), capture_output=True, text=True)
+    print(f"grading lab {lab} took {time.monotonic() - start:.0f} s")
+    print(r.stdout + r.stderr)
+    expect(r.returncode == 0, f"grade_lab.py ran lab {lab} and exits 0")
+    for row in csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")):
+        print(f"{row['name']}: {row['verdict']}, build {row['build_seconds']} s, tests {row['test_seconds']} s")
+    lines = r.stdout.splitlines()
+    return dict(line.split(": ", 1) for line in lines[:-1]), (lines[-1] if lines else "")
+
+
+def check_lines(lines, expected):
+    expect(list(lines) == sorted(expected), "one line per submission, in the order of the names")
+    for name, pattern in expected.items():
+        expect(re.fullmatch(pattern, lines.get(name, "")) is not None, f"{name}: {pattern}", lines.get(name, ""))
+
+
+def check_summary(summary, expected):
+    """The summary line counts the verdicts of expected (name: pattern)."""
+    verdicts = [re.match(r"PASS|FAIL|COMPILE ERROR|TIMEOUT|CRASH|REFUSED", p).group(0) for p in expected.values()]
+    want = ", ".join(f"{v} {verdicts.count(v)}" for v in ("PASS", "FAIL", "COMPILE ERROR", "TIMEOUT", "CRASH", "REFUSED")
+                     if verdicts.count(v) or v != "CRASH")
+    expect(summary == want, f"the summary line is '{want}'", summary)
+
+
+def nothing_planted(work):
+    targets, copy_to = plants(work)
+    left = [t for t in targets + [copy_to] if os.path.exists(t)]
+    expect(not left, "the submission that writes outside its folder planted nothing", ", ".join(left))
+    for t in left:  # so that the next run starts clean
+        os.remove(t)
+
+
+def no_pictures_in_repository():
+    expect(not os.path.exists(os.path.join(REPO, "test_pictures")), "nothing written into the repository (test_pictures/)")
+
+
+# A FAIL line: the test in quotes, its check with the numbers, then the suspect.
+FAIL = r'FAIL "[^"]+": (its check .+ failed with|an exception|FAIL|a fatal error).+ \(suspect: .+\)'
+
+
+def lab2(subs, out, work):
+    lab2_fixtures(subs, work, out)
+    mutants = written_mutants(subs, 2, also=["uniform_theta_uniform"])  # that one is d_theta_uniform
+    lines, summary = grade(2, subs, out, work, TIMEOUT)
+    expected = {
+        "a_correct": r"PASS",
+        "b_syntax_error": r"COMPILE ERROR labs/lab2\.glsl:\d+(:\d+)?: error: .*",
+        "c_pdf_2pi": (r'FAIL "sampling: each hemisphere sampler\'s pdf is the density of its mapping[^"]*": '
+                      r'its check .*\d.* \(suspect: .*uniform_hemisphere_pdf.*\)'),
+        "d_theta_uniform": r'FAIL "sampling: [^"]*": its check .*\d.* \(suspect: .*\)',
+        "e_convention": r"PASS",
+        # The grader's build keeps the lab's functions out of line: the line names the one that loops.
+        "f_endless_loop": (r"TIMEOUT in sample_uniform_hemisphere\(\) after \S+ s.* "
+                           r"\(warning: labs/lab2\.glsl:\d+(:\d+)?: warning: comparison .* always true.*\)"),
+        "g_crash": r"CRASH SIGSEGV in \".*\"",
+        "h_empty": r"COMPILE ERROR no lab2\.glsl in the submission",
+        "r_includes_reference": r"REFUSED labs/lab2\.glsl:1: includes the reference solution common/kernel/uniform_hemisphere\.glsl",
+        "r_writes_outside": r"REFUSED labs/lab2\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*",
+        "r_rewrites_report": r"REFUSED labs/lab2\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*",
+        "r_prints_1gb": r"REFUSED labs/lab2\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*",
+    }
+    for mutant in mutants:  # each known-wrong answer fails, with a suspect
+        expected["m_" + mutant] = FAIL
+    check_lines(lines, expected)
+    check_summary(summary, expected)
+    rows = list(csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8")))
+    expect([(row["name"], row["verdict"]) for row in rows] ==
+           [(n, re.match(r"PASS|FAIL|COMPILE ERROR|TIMEOUT|CRASH|REFUSED", expected[n]).group(0)) for n in sorted(expected)],
+           "grades.csv: one row per submission with its verdict")
+    suite = ET.parse(os.path.join(out, "grades.xml")).getroot().find("testsuite")
+    cases = {c.get("name"): c for c in suite.iter("testcase")}
+    expect(sorted(cases) == sorted(expected) and suite.get("tests") == str(len(expected))
+           and suite.get("failures") == str(2 + len(mutants)) and suite.get("errors") == "8",
+           "grades.xml: one JUnit testcase per submission, a failure for each wrong answer, 8 errors")
+    expect(all(cases[n].find("failure") is None and cases[n].find("error") is None for n in ("a_correct", "e_convention"))
+           and cases["c_pdf_2pi"].find("failure").get("type") == "FAIL"
+           and cases["r_prints_1gb"].find("error").get("type") == "REFUSED", "grades.xml: each testcase's outcome and type")
+    expect(os.path.isfile(os.path.join(out, "logs", "a_correct.pictures", "uniform_hemisphere.png")),
+           "the histogram of a submission is kept in logs/NAME.pictures/")
+    nothing_planted(work)
+    no_pictures_in_repository()
+
+
+def lab2_sandbox_alone(subs, out, work):
+    """The attacks again with the source check off (--unchecked-source): the sandbox alone
+    must keep them from passing, planting files or flooding the grader."""
+    os.makedirs(subs)
+    lab2_fixtures(subs, work, out)
+    for f in os.listdir(subs):
+        if not f.startswith("r_"):
+            path = os.path.join(subs, f)
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+    lines, summary = grade(2, subs, out, work, TIMEOUT, ["--unchecked-source"])
+    check_lines(lines, {
+        "r_includes_reference": r"COMPILE ERROR .*common/kernel/uniform_hemisphere\.glsl.*reference solution.*",
+        # No code runs during the build of pt_lab_tests, and the tests see the build read-only:
+        # every write fails, and its estimator (no pdf) is graded.
+        "r_writes_outside": FAIL,
+        "r_rewrites_report": r"(FAIL|REFUSED) .*",
+        "r_prints_1gb": r"REFUSED .*printed more than \d+ MB.*",
+    })
+    nothing_planted(work)
+    no_pictures_in_repository()
+
+
+def lab4(subs, out, work):
+    os.makedirs(subs)
+    lab4_fixtures(subs)
+    mutants = written_mutants(subs, 4)
+    expected = {"a_correct": r"PASS", "b_pdf_doubled": FAIL, "c_pdf_mismatch": FAIL}
+    for mutant in mutants:
+        expected["m_" + mutant] = FAIL
+    lines, summary = grade(4, subs, out, work, "300")  # no endless loop among them
+    check_lines(lines, expected)
+    check_summary(summary, expected)
+    failed = {row["name"]: row["failed_tests"].split("\n")
+              for row in csv.DictReader(open(os.path.join(out, "grades.csv"), encoding="utf-8"))}
+    expect("light sampling: the mean of 1/pdf is the solid angle a triangle or a sphere subtends" in failed["b_pdf_doubled"],
+           "b_pdf_doubled fails the mean of 1/pdf", repr(failed["b_pdf_doubled"]))
+    expect(any(n.startswith("light sampling: triangle_light_pdf is d^2 / (cos_y area) times the pick")
+               for n in failed["c_pdf_mismatch"]), "c_pdf_mismatch fails the held-back test", repr(failed["c_pdf_mismatch"]))
