@@ -1,28 +1,21 @@
 // The memory probe and a render's memory need (common/render/memory.h): each limit read from
 // a fake machine's files (cgroup v1 and v2, MemAvailable, RLIMIT_AS), the estimate an upper
-// bound of the peaks measured, and an allocation that fails said as out of memory.
+// bound of the peaks measured. An allocation that fails: test_out_of_memory.cpp.
 // Not part of the article: the machinery of the stage programs.
 #include <catch2/catch.hpp>
 
 #include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <new>
 #include <string>
-#include <vector>
 
-#include "common/app/app.h"
-#include "common/app/image_output.h"
 #include "common/base/error.h"
-#include "common/render/film.h"
 #include "common/render/memory.h"
 #include "common/scene/scene.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/stderr_capture.h"
 
 namespace fs = std::filesystem;
 using pt::AvailableMemory;
@@ -30,7 +23,7 @@ using pt::FramePlan;
 
 namespace {
 
-constexpr std::uint64_t kGB = 1000000000ull, kMiB = 1ull << 20;
+constexpr std::uint64_t kGB = 1000000000ull;
 
 // A fake machine: files under a scratch folder that stands for /.
 struct FakeRoot {
@@ -228,78 +221,4 @@ TEST_CASE("memory check: a render that does not fit is refused with the need, wh
   CHECK(message.find("100 MB is available") != std::string::npos);
   CHECK(message.find("/sys/fs/cgroup/job/memory.max") != std::string::npos);
   CHECK(message.find('\n') == std::string::npos);
-}
-
-TEST_CASE("memory step: the innermost step names what was being allocated, also once an exception has left it",
-          "[memory][reliability]") {
-  { pt::MemoryStep before("reading the options"); }  // a step ended without an exception leaves none
-  CHECK(pt::MemoryStep::current().empty());
-  {
-    pt::MemoryStep outer("rendering");
-    CHECK(pt::MemoryStep::current() == "rendering");
-    {
-      pt::MemoryStep inner("writing the image 'a.exr'");
-      CHECK(pt::MemoryStep::current() == "writing the image 'a.exr'");
-    }
-    CHECK(pt::MemoryStep::current() == "rendering");
-  }
-  CHECK(pt::MemoryStep::current().empty());
-  pt_test::StderrCapture err;
-  int code = pt::run_guarded("stage1_raycast", [] {
-    pt::MemoryStep step("building the BVH");
-    throw std::bad_alloc();
-    return 0;
-  });
-  const std::string text = err.text();
-  CHECK(code == pt::kExitBadOption);
-  CHECK(text == "stage1_raycast: out of memory while building the BVH; render a smaller image or scene, or give it "
-                "more memory\n");
-}
-
-TEST_CASE("memory: an .exr that runs out of memory while it is encoded says out of memory, exit 2, never a "
-          "folder's permissions",
-          "[memory][reliability][real_memory]") {
-  const fs::path dir = pt_test::scratch_dir("pt_memory");
-  const std::string out = (dir / "oom.exr").string();
-  fs::remove(out);
-  // A film of 1024 x 1024: its .exr's channels take 48 MiB, their encoding as much again; the
-  // child may grow by 75 MiB, so the channels are made and their encoding is not.
-  const int side = 1024;
-  pt::Film film(side, side);
-  std::vector<glm::vec4> pass(std::size_t(side) * side, glm::vec4(0.5f, 0.25f, 0.125f, 0.5f));
-  film.add_pass(pass, 1);
-  film.add_pass(pass, 1);
-  const std::vector<float> rgb = film.mean_rgb();
-  const pt::OutputFile file(out);
-  pt::ImageMetadata meta;
-  meta.stage = "stage1_raycast", meta.film = &film, meta.ranges = {{0, 2}};
-  const fs::path err_path = dir / "oom.stderr";
-  pid_t pid = ::fork();
-  if (pid == 0) {
-    FILE* err = std::freopen(err_path.c_str(), "w", stderr);
-    (void)err;
-    std::ifstream statm("/proc/self/statm");
-    std::uint64_t pages = 0;
-    statm >> pages;
-    struct rlimit as{};
-    as.rlim_cur = as.rlim_max = rlim_t(pages * std::uint64_t(::sysconf(_SC_PAGESIZE)) + 75 * kMiB);
-    ::setrlimit(RLIMIT_AS, &as);
-    const int code = pt::run_guarded("stage1_raycast", [&] {
-      pt::MemoryStep step("writing the image '" + out + "'");
-      file.write(rgb, side, side, meta);
-      return 0;
-    });
-    std::fflush(stderr);
-    ::_exit(code);
-  }
-  int status = 0;
-  REQUIRE(::waitpid(pid, &status, 0) == pid);
-  const std::string text = pt_test::read_file(err_path);
-  INFO(text);
-  REQUIRE(WIFEXITED(status));
-  CHECK(WEXITSTATUS(status) == pt::kExitBadOption);
-  CHECK(pt_test::lines(text) == 1);
-  CHECK(text.find("out of memory while writing the image") != std::string::npos);
-  CHECK(text.find("permissions") == std::string::npos);
-  CHECK(!fs::exists(out));
 }
