@@ -2,7 +2,7 @@
 // (shadow rays: bounded by their light point; and the any-hit search) against the triangle
 // count, for the same rays, by the brute force (the article's search, Eq. 2, as the CPU
 // kernel compiles it), this project's BVH on the CPU and on the GPU
-// backend (common/kernel/bvh.glsl), and Embree 3 when the build found it; and the BVH's
+// backend (gpu/bvh_walk.glsl), and Embree 3 when the build found it; and the BVH's
 // build time and size against Embree's high-quality build. What its parts share.
 #pragma once
 
@@ -117,7 +117,7 @@ class EmbreeScene {
   std::size_t bytes_ = 0;
 };
 
-// The BVH walk of common/kernel/bvh.glsl on the default Vulkan device (accel_gpu.cpp):
+// The GPU's BVH walk (gpu/bvh_walk.glsl) on the default Vulkan device (accel_gpu.cpp):
 // one invocation per ray of a buffer, as the renderer's kernels search with --accel bvh.
 class GpuBvhTracer {
  public:

@@ -1,5 +1,5 @@
 // pt_bench's acceleration section on the GPU backend (accel.h): the renderer's nearest-hit
-// search through the BVH (bounded for shadow rays) and its any-hit search, common/kernel/bvh.glsl
+// search through the BVH (bounded for shadow rays) and its any-hit search, gpu/bvh_walk.glsl
 // as gpu/triangle_search.glsl calls it,
 // over a buffer of rays, one invocation per ray (intersect_raycast.comp with params.accel =
 // kAccelBvh and the BVH at bindings 9 and 10, as gpu_backend.cpp binds it for a render).

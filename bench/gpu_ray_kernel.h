@@ -2,7 +2,7 @@
 // device, a single dispatch of 64-ray workgroups recorded once and submitted again and
 // again, timed by the wall clock and by the process's CPU time (lavapipe's threads too).
 // Used by the speed section (speed_gpu.cpp: the brute-force search of Eq. 2's raycasting)
-// and the acceleration section (accel_gpu.cpp: the BVH walk of common/kernel/bvh.glsl).
+// and the acceleration section (accel_gpu.cpp: the GPU's BVH walk, gpu/bvh_walk.glsl).
 #pragma once
 
 #include <chrono>

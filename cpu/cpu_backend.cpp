@@ -86,8 +86,7 @@ class CpuBackend : public Backend {
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     Clock::time_point start = Clock::now();
-    PassResult result;
-    result.counters[kCounterNonFinitePixel] = kNoPixel;
+    PassResult result;  // its counters start at zero, kNoPixel for the pixel index
     // nearest_triangle() (cpu/triangle_lanes.h) reads the arrays only without a BVH.
     if ((params.accel != kAccelBvh || scene_.bvh_nodes == nullptr) && !soa_ && !triangles_.empty()) {
       soa_ = std::make_unique<TriangleSoa>(triangles_);

@@ -2,9 +2,14 @@
 // the block test of the spheres (Eq. 2's raycasting).
 #include "cpu/sphere_soa.h"
 
-#include <cmath>
+#include "cpu/kernel_prelude.h"
 
 namespace pt {
+
+namespace sphere_kernel {  // the kernel's sphere_power_terms(), compiled as the kernels compile it
+using namespace pt::glsl;
+#include "common/kernel/sphere_power.glsl"
+}  // namespace sphere_kernel
 
 SphereSoa::SphereSoa(std::span<const Sphere> spheres, uint block) {
   count = uint(spheres.size());
@@ -12,21 +17,10 @@ SphereSoa::SphereSoa(std::span<const Sphere> spheres, uint block) {
   data.assign(std::size_t(stride) * kArrayCount, 0.0f);
   for (std::size_t i = 0; i < spheres.size(); i++) {
     const glm::vec3 c = spheres[i].center;
-    const float radius = spheres[i].radius;
-    // sphere_power_from_world_origin()'s terms of the sphere alone, operation by operation
-    // (the build does not contract a * b + c into one rounding: -ffp-contract=off).
-    const glm::vec3 a(std::fabs(c.x), std::fabs(c.y), std::fabs(c.z));
-    float m = a.z;
-    float others = a.x * a.x + a.y * a.y;
-    if (a.x >= a.y && a.x >= a.z) {
-      m = a.x;
-      others = a.y * a.y + a.z * a.z;
-    } else if (a.y >= a.z) {
-      m = a.y;
-      others = a.x * a.x + a.z * a.z;
-    }
-    const float lead = (m - radius) * (m + radius);
-    const float values[kArrayCount] = {c.x, c.y, c.z, radius, lead + others, std::fabs(lead), others, a.x, a.y, a.z};
+    // The terms hit_sphere() computes from the sphere alone, by the kernel's own function.
+    const sphere_kernel::SpherePowerTerms t = sphere_kernel::sphere_power_terms(c, spheres[i].radius);
+    const float values[kArrayCount] = {c.x,     c.y,          c.z,          spheres[i].radius, t.center_power,
+                                       t.lead_abs, t.others, t.abs_center.x, t.abs_center.y, t.abs_center.z};
     for (int k = 0; k < kArrayCount; k++) data[std::size_t(k) * stride + i] = values[k];
   }
 }

@@ -2,9 +2,10 @@
 // spheres (cpu/sphere_lanes.h; the raycasting step of the article, Eq. 2, for its spheres).
 // Per sphere the numbers hit_sphere() of common/kernel/intersect.glsl reads or computes from
 // the sphere alone: the centre, the radius, and the terms of
-// sphere_power_from_world_origin() that do not depend on the ray, computed here with the
-// same float operations, so that the lanes round as the scalar test does. Each array is
-// padded to a multiple of the block size; the lanes mask the padding by index.
+// sphere_power_from_world_origin() that do not depend on the ray, computed by the kernel's
+// own sphere_power_terms() (common/kernel/sphere_power.glsl), so that the lanes round as the
+// scalar test does. Each array is padded to a multiple of the block size; the lanes mask
+// the padding by index.
 #pragma once
 
 #include <span>

@@ -5,7 +5,6 @@
 #include "gpu/gpu_backend.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <map>
 #include <utility>
@@ -20,7 +19,9 @@
 #include "common/scene/environment.h"
 #include "common/scene/scene.h"
 #include "gpu/compute_pipeline.h"
+#include "gpu/device_limits.h"
 #include "gpu/fault.h"
+#include "gpu/loop_limit.h"
 
 namespace pt::gpu {
 
@@ -29,10 +30,6 @@ namespace {
 constexpr uint32_t kGroupSize = 8;                      // kernel_main.glsl's local size
 constexpr uint64_t kPixelSamplesPerDispatch = 1u << 22;  // about 4 million camera samples
 constexpr uint64_t kFenceTimeoutNs = 120'000'000'000;    // a dispatch that takes 2 minutes is hung
-
-std::string megabytes(VkDeviceSize bytes) {
-  return memory_size_words(bytes);  // "134 MB", "4.3 GB"
-}
 
 class GpuBackend : public Backend, public DeviceMemoryLimits {
  public:
@@ -53,7 +50,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
       check(vkCreateQueryPool(dev, &q, nullptr, &queries_), "creating a timestamp query pool");
     }
     params_ = Buffer(context_, sizeof(FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-    counters_ = Buffer(context_, sizeof(PassResult::counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    counters_ = Buffer(context_, kGpuCounterCount * sizeof(uint), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   }
 
   ~GpuBackend() override {
@@ -113,45 +110,9 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     pipeline_ = pipeline.get();
   }
 
-  // Before anything is built or allocated (common/render/memory.h): each buffer that
-  // set_scene() and run_pass() will make against the device's limits, as they check them,
-  // and all of them together against its memory.
+  // Before anything is built or allocated (common/render/memory.h): gpu/device_limits.h.
   void check_device_memory(const Scene& scene, uint features, std::uint64_t pixels, const Bvh* bvh) const override {
-    VkDeviceSize total = 0;
-    auto need = [&](std::uint64_t count, std::uint64_t size, const char* what, bool texels = false) {
-      VkDeviceSize bytes = 0;
-      if (__builtin_mul_overflow(count, size, &bytes)) bytes = ~VkDeviceSize(0);
-      check_range(bytes, what);
-      if (texels) check_texels(bytes, what);
-      total = std::min(total + bytes, ~VkDeviceSize(0) / 2);
-    };
-    const bool textured = (features & kFeatureTextures) && uses_textures(scene);
-    need(scene.triangles.size(), sizeof(Triangle), "the scene's triangles need");
-    need(scene.spheres.size(), sizeof(Sphere), "the scene needs");
-    need(scene.materials.size(), sizeof(Material), "the scene needs");
-    need(scene.point_lights.size(), sizeof(PointLight), "the scene needs");
-    need(scene.lights.size(), sizeof(Light), "the scene needs");
-    need(scene.light_guide.size(), sizeof(uint), "the scene needs");
-    if (bvh && !bvh->nodes.empty()) {
-      need(bvh->nodes.size(), sizeof(BvhNode), "the BVH's nodes need", true);
-      need(bvh->indices.size(), sizeof(uint), "the BVH's triangle list needs");
-    }
-    if (textured) {
-      need(scene.triangle_attributes.size(), sizeof(TriangleAttributes), "the vertex attributes need");
-      need(scene.texels.size(), sizeof(uint), "the textures need");
-    }
-    if ((features & kFeatureShadingNormals) && uses_shading_normals(scene))
-      need(scene.triangle_shading.size(), sizeof(TriangleShading), "the shading normals need");
-    if ((features & kFeatureEnvironment) && scene.environment) {
-      need(scene.environment->radiance.size(), sizeof(float), "the environment map needs");
-      need(scene.environment->table.size(), sizeof(float), "the environment map's sampling tables need");
-    }
-    need(pixels, sizeof(glm::vec4), "the image needs");
-    if (total > context_.heap_size()) {
-      throw Error(kExitNoDevice, "the render needs " + megabytes(total) + " of buffers in all but device '" +
-                                     context_.device_name() + "' has " + megabytes(context_.heap_size()) +
-                                     "; render a smaller image or scene, or use --backend cpu");
-    }
+    check_scene_memory(context_, scene, features, pixels, bvh);
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
@@ -162,40 +123,15 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     if (!pipeline_) throw std::logic_error("run_pass before set_scene");
     if (!one_sample_ || params.sample_count <= 1) {
       PassResult result = run_dispatches(params, out);
-      if (result.counters[kCounterLoopLimit] == 0 || params.sample_count <= 1) return result;
-      // lavapipe's loop budget per invocation ran out (gpu/kernel_main.glsl): the pass is wrong.
+      if (result.cut_short.empty() || params.sample_count <= 1) return result;
+      // lavapipe's loop budget per invocation ran out (gpu/loop_limit.h): the pass is wrong.
       // From now on every invocation renders one sample, the pass again included.
       one_sample_ = true;
     }
-    return run_one_sample_at_a_time(params, out);
+    return run_one_sample_at_a_time(params, out, [&](const FrameParams& one) { return run_dispatches(one, out); });
   }
 
  private:
-  // The pass as sample_count passes of one sample each (the same sample indices, so the same
-  // samples), added up on the host as render_pixel() adds its samples: the radiance sums,
-  // and the roots of the sums of squared luminance as the root of their squares' sum.
-  PassResult run_one_sample_at_a_time(const FrameParams& params, std::span<glm::vec4> out) {
-    std::vector<glm::dvec4> sum(out.size(), glm::dvec4(0.0));
-    PassResult result;
-    result.counters[kCounterNonFinitePixel] = kNoPixel;
-    for (uint i = 0; i < params.sample_count; i++) {
-      FrameParams one = params;
-      one.first_sample = params.first_sample + i;
-      one.sample_count = 1u;
-      PassResult part = run_dispatches(one, out);
-      for (std::size_t p = 0; p < out.size(); p++) {
-        sum[p] += glm::dvec4(glm::dvec3(out[p]), double(out[p].w) * double(out[p].w));
-      }
-      result.kernel_seconds += part.kernel_seconds;
-      for (uint c = 0; c < kCounterCount; c++) {
-        result.counters[c] = c == kCounterNonFinitePixel ? std::min(result.counters[c], part.counters[c])
-                                                         : result.counters[c] + part.counters[c];
-      }
-    }
-    for (std::size_t p = 0; p < out.size(); p++) out[p] = glm::vec4(glm::dvec3(sum[p]), std::sqrt(sum[p].w));
-    return result;
-  }
-
   // Runs the pass `params` over the whole image in dispatches of bounded work.
   PassResult run_dispatches(const FrameParams& params, std::span<glm::vec4> out) {
     const uint32_t width = params.width, height = params.height;
@@ -206,8 +142,9 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
                                             &environment_tables_, &light_guide_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
-    result.counters[kCounterNonFinitePixel] = kNoPixel;
-    counters_.write(result.counters, sizeof result.counters);
+    uint counters[kGpuCounterCount] = {};  // the kernels' (kNoPixel where they lower it), then the GPU's
+    std::copy_n(result.counters, kCounterCount, counters);
+    counters_.write(counters, sizeof counters);
 
     // Rows per dispatch: a bounded amount of work, a whole number of workgroups.
     const VkPhysicalDeviceLimits& limits = context_.properties().limits;
@@ -227,7 +164,9 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
       result.kernel_seconds += dispatch(groups_x, (n + kGroupSize - 1) / kGroupSize);
     }
     output_.read(out.data(), out.size_bytes());
-    counters_.read(result.counters, sizeof result.counters);
+    counters_.read(counters, sizeof counters);
+    std::copy_n(counters, kCounterCount, result.counters);
+    result.cut_short = loop_limit_message(counters[kCounterLoopLimit]);
     return result;
   }
 
@@ -238,44 +177,16 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
   // Storage buffers never have size 0: an empty array still gets a small buffer.
   void upload(Buffer& buffer, const void* data, std::size_t bytes, const char* what = "the scene needs",
               VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
-    check_range(bytes, what);
-    if (usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) check_texels(bytes, what);
+    check_range(context_, bytes, what);
+    if (usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) check_texels(context_, bytes, what);
     buffer = Buffer(context_, std::max<std::size_t>((bytes + 15) / 16 * 16, 64), usage);
     if (bytes) buffer.write(data, bytes);
   }
 
   void ensure_output(VkDeviceSize bytes) {
     if (output_.size() == bytes) return;
-    check_range(bytes, "the image needs");
+    check_range(context_, bytes, "the image needs");
     output_ = Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  }
-
-  // A storage buffer larger than the device's limit cannot be bound, nor one larger than
-  // its memory allocated: say so before trying.
-  void check_range(VkDeviceSize bytes, const char* what) const {
-    VkDeviceSize limit = context_.properties().limits.maxStorageBufferRange;
-    if (bytes > limit) {
-      throw Error(kExitNoDevice, std::string(what) + " a " + megabytes(bytes) + " (" + std::to_string(bytes) +
-                                     " bytes) buffer but device '" + context_.device_name() + "' allows " +
-                                     megabytes(limit) + " (" + std::to_string(limit) +
-                                     " bytes); render a smaller image or scene, or use --backend cpu");
-    }
-    if (bytes > context_.heap_size()) {
-      throw Error(kExitNoDevice, std::string(what) + " " + megabytes(bytes) + " of memory but device '" +
-                                     context_.device_name() + "' has " + megabytes(context_.heap_size()) +
-                                     "; render a smaller image or scene, or use --backend cpu");
-    }
-  }
-
-  // The kernel reads the BVH's nodes as uvec4 texels (binding 9): a device allows at least
-  // 65,536 of them per buffer (lavapipe 2^27, as desktop GPUs do).
-  void check_texels(VkDeviceSize bytes, const char* what) const {
-    const VkDeviceSize texels = (bytes + 15) / 16, limit = context_.properties().limits.maxTexelBufferElements;
-    if (texels > limit) {
-      throw Error(kExitNoDevice, std::string(what) + " " + std::to_string(texels) + " texels of 16 bytes but device '" +
-                                     context_.device_name() + "' reads at most " + std::to_string(limit) +
-                                     " from one texel buffer; render a smaller scene, or use --backend cpu");
-    }
   }
 
   // Records and submits one dispatch, waits for it; returns its kernel time.

@@ -15,7 +15,7 @@ layout(std140, set = 0, binding = 4) uniform ParamsBuffer { FrameParams params; 
 layout(std430, set = 0, binding = 5) writeonly buffer OutputBuffer { vec4 pass_output[]; };
 layout(std430, set = 0, binding = 6) buffer CounterBuffer { uint counters[]; };
 layout(std430, set = 0, binding = 7) readonly buffer LightBuffer { Light lights[]; };
-// The BVH over the triangles (common/scene/bvh.h, walked by common/kernel/bvh.glsl); a
+// The BVH over the triangles (common/scene/bvh.h, walked by gpu/bvh_walk.glsl); a
 // placeholder when the render has none (then params.accel is kAccelNone). The nodes are read
 // as texels of a uniform texel buffer, two uvec4 per BvhNode: lavapipe reads a storage buffer
 // one invocation and one component at a time (see triangle_at below), a texel for all its

@@ -4,6 +4,10 @@
 #ifndef PT_GPU_KERNEL_MAIN_GLSL
 #define PT_GPU_KERNEL_MAIN_GLSL
 
+// The GPU's own counter, after the kernels' kCounterCount (scene_types.h; gpu/loop_limit.h):
+// the pixels whose loops the driver cut short in this pass.
+const uint kCounterLoopLimit = kCounterCount;
+
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 void main() {

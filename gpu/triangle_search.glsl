@@ -1,11 +1,11 @@
 // The GPU's searches over the triangles and the spheres (common/kernel/intersect.glsl declares
-// them). The triangles: through
-// the BVH (common/kernel/bvh.glsl) when the pass asks for it, else the triangles in index
-// order, one hit_triangle() at a time, as the article's brute force. The same hits.
+// them). The triangles: through the BVH when the pass asks for it (gpu/bvh_walk.glsl, the walk
+// of common/kernel/bvh.glsl tuned for lavapipe), else the triangles in index order, one
+// hit_triangle() at a time, as the article's brute force. The same hits.
 #ifndef PT_GPU_TRIANGLE_SEARCH_GLSL
 #define PT_GPU_TRIANGLE_SEARCH_GLSL
 
-#include "common/kernel/bvh.glsl"
+#include "gpu/bvh_walk.glsl"
 
 Hit nearest_triangle(Ray ray, RayShear rs, Hit best) {
   if (params.accel == kAccelBvh) return nearest_triangle_bvh(ray, rs, best);

@@ -1,4 +1,4 @@
-// The ray/box slab test of the BVH traversal (common/kernel/bvh.glsl, which declares these
+// The ray/box slab test of the BVH traversal (common/kernel/bvh_hit.glsl, which declares these
 // two functions): the step after the article's GPU section, which ends "yet without an
 // acceleration structure". Lab 5 (docs/labs/lab5.md) asks the student for them: its build
 // compiles labs/lab5.glsl instead of this file.

@@ -1,165 +1,99 @@
 // The nearest-triangle search through the bounding volume hierarchy (common/scene/bvh.h
 // builds it on the host): the step after the article's GPU section, which ends "yet without
 // an acceleration structure". The same hits as the brute force of intersect.glsl, bit for
-// bit: t, triangle and barycentrics (tests/common/kernel/test_bvh_traversal.cpp).
+// bit: t, triangle and barycentrics (tests/common/kernel/test_bvh_traversal.cpp). This is
+// the walk in its plain form, the CPU's when it has no wide BVH (its fast path is
+// cpu/wide_bvh*); the GPU runs the same walk tuned for lavapipe (gpu/bvh_walk.glsl).
 #ifndef PT_BVH_GLSL
 #define PT_BVH_GLSL
 
-#include "common/kernel/intersect.glsl"
+#include "common/kernel/bvh_hit.glsl"
 
-// The slab test, declared here and defined by the build (kernel_definitions.glsl,
-// cmake/Labs.cmake): common/kernel/box_slab.glsl, or labs/lab5.glsl in lab 5's build.
-// inverse_direction(dir): 1 / dir for box_span, without a NaN from a zero component.
-// box_span(): the distances [enter, exit] along the ray within the box lo..hi, clipped to
-// [0, t_max]; enter > exit: the ray misses it. Never a miss for a box that holds a triangle
-// hit_triangle() hits within t_max.
-vec3 inverse_direction(vec3 dir);
-vec2 box_span(Ray ray, vec3 inv_dir, vec3 lo, vec3 hi, float t_max);
-
-// Whether the ray passes through the box lo..hi within [0, t_max] (never a false "no").
-// t_max itself counts: a triangle at exactly the best distance may still win on index.
-bool hit_box(Ray ray, vec3 inv_dir, vec3 lo, vec3 hi, float t_max) {
-  vec2 span = box_span(ray, inv_dir, lo, hi, t_max);
-  return span.x <= span.y;
-}
-
-// hit_triangle(), with the brute force's tie rule kept in any order: of two hits at the
-// same distance the lower index wins. hit_triangle() keeps `best` on an equal t, which in
-// index order is the lower index; the BVH may test the lower index later, so it is given
-// the next float above best.t as its bound (t < next(best.t) is t <= best.t). One call of
-// hit_triangle() for both cases: as two calls, neighbouring rays that took different
-// branches ran both tests on lavapipe (docs/acceleration.md, "Measured").
-Hit hit_triangle_tie(Ray ray, RayShear rs, uint index, Hit best) {
-  Hit bound = best;
-  if (best.kind == kPrimTriangle && index < best.prim) {
-    bound.t = intBitsToFloat(floatBitsToInt(best.t) + 1);  // best.t > 0 and finite here
-  }
-  Hit found = hit_triangle(ray, rs, index, bound);
-  return found.prim == index && found.kind == kPrimTriangle ? found : best;
-}
-
-// A pending node as the stack holds it: its first_or_left and count in one number
-// (kBvhCountBits, scene_types.h). On lavapipe two stack arrays instead of three gave 3-5% more
-// rays per second (docs/acceleration.md): it reads and writes them invocation by invocation.
-uint bvh_pending(uint first_or_left, uint count) { return (first_or_left << kBvhCountBits) | count; }
-uint bvh_pending_first(uint pending) { return pending >> kBvhCountBits; }
-uint bvh_pending_count(uint pending) { return pending & ((1u << kBvhCountBits) - 1u); }
-
-// The nearest hit of `best` and every triangle, found by walking the BVH: an inner node's
-// nearer child first, the farther one on a stack of pending nodes with its entry distance
-// (skipped when it is popped if a nearer hit has been found since), a leaf's triangles by
-// hit_triangle_tie(). No recursion: the stack is an array of kBvhStackSize, as deep as the
-// build lets the tree grow. The walk descends inner nodes in a loop of its own until it
-// stands at a leaf, and only then tests triangles ("while-while", Aila and Laine 2009): a
-// GPU runs neighbouring rays in lockstep, and a leaf's test, the costly step, then runs for
-// all of them at once rather than again for each ray that reaches its leaf a step later.
+// The nearest hit of `best` and every triangle, found by walking the BVH with a stack of
+// the nodes still to visit, each with the distance at which the ray enters its box. A node
+// popped from the stack is skipped if a hit nearer than that distance has been found since
+// it was pushed; a leaf's triangles are tested by hit_triangle_tie(); an inner node pushes
+// the children whose boxes the ray passes through, the farther one first, so that the
+// nearer one is visited next (its hits then let more of the farther one be skipped). No
+// recursion: the stack is an array of kBvhStackSize, as deep as the build lets the tree
+// grow (one pending sibling per level, and the two children of the node just popped).
 Hit nearest_triangle_bvh(Ray ray, RayShear rs, Hit best) {
   if (params.triangle_count == 0u) return best;
   vec3 inv_dir = inverse_direction(ray.dir);
-  BvhNode n = bvh_node_at(0u);  // the node the walk stands at: its first_or_left and count
-  if (!hit_box(ray, inv_dir, n.lo, n.hi, best.t)) return best;
-  // The pending nodes as bvh_pending(first_or_left, count) and entry distance: a pop reads no
-  // node (on lavapipe reading it again after each pop cost 14-26% of the rays per second).
-  uint stack_node[kBvhStackSize];
-  float stack_t[kBvhStackSize];
-  uint top = 0u;
-  bool walking = true;
-  while (walking) {
-    // Inner nodes, down to a leaf. Both children's whole nodes are read, not just their
-    // boxes: the child the walk goes on to, or pushes, is then at hand (on the GPU a node is
-    // two texels whose fourth components hold first_or_left and count, so this costs no
-    // extra read).
-    while (n.count == 0u) {
-      uint left = n.first_or_left;
-      BvhNode child_l = bvh_node_at(left);
-      BvhNode child_r = bvh_node_at(left + 1u);
-      vec2 span_l = box_span(ray, inv_dir, child_l.lo, child_l.hi, best.t);
-      vec2 span_r = box_span(ray, inv_dir, child_r.lo, child_r.hi, best.t);
-      bool hit_l = span_l.x <= span_l.y;
-      bool hit_r = span_r.x <= span_r.y;
-      if (hit_l && hit_r) {
-        bool left_first = span_l.x <= span_r.x;
-        BvhNode far = left_first ? child_r : child_l;
-        stack_node[top] = bvh_pending(far.first_or_left, far.count);
-        stack_t[top] = left_first ? span_r.x : span_l.x;
-        top++;
-        n = left_first ? child_l : child_r;
-      } else if (hit_l || hit_r) {
-        n = hit_l ? child_l : child_r;
-      } else {
-        // Nothing below this node: the next pending node that a hit could still lie in. The
-        // same pop as after a leaf, written here too so that a ray goes on down without
-        // waiting for its neighbours' descents to end (one pop after the loop for both
-        // cases measured 8% fewer camera rays/s on lavapipe: docs/acceleration.md).
-        walking = false;
-        while (top > 0u && !walking) {
-          top--;
-          if (stack_t[top] <= best.t) {
-            n.first_or_left = bvh_pending_first(stack_node[top]);
-            n.count = bvh_pending_count(stack_node[top]);
-            walking = true;
-          }
-        }
-        if (!walking) break;
-      }
+  uint stack_node[kBvhStackSize];  // the nodes still to visit: their indices
+  float stack_t[kBvhStackSize];    // and where the ray enters their boxes
+  uint top = 0u;                   // how many there are
+  BvhNode root = bvh_node_at(0u);
+  vec2 span = box_span(ray, inv_dir, root.lo, root.hi, best.t);
+  if (span.x > span.y) return best;
+  stack_node[0] = 0u;
+  stack_t[0] = span.x;
+  top = 1u;
+  while (top > 0u) {
+    top--;
+    if (stack_t[top] > best.t) continue;  // a nearer hit was found since it was pushed
+    BvhNode n = bvh_node_at(stack_node[top]);
+    if (n.count > 0u) {  // a leaf: its triangles
+      for (uint i = 0u; i < n.count; i++) best = hit_triangle_tie(ray, rs, bvh_index_at(n.first_or_left + i), best);
+      continue;
     }
-    if (!walking) break;
-    // A leaf: its triangles, then the next pending node that a hit could still lie in.
-    for (uint i = 0u; i < n.count; i++) best = hit_triangle_tie(ray, rs, bvh_index_at(n.first_or_left + i), best);
-    walking = false;
-    while (top > 0u && !walking) {
-      top--;
-      if (stack_t[top] <= best.t) {
-        n.first_or_left = bvh_pending_first(stack_node[top]);
-        n.count = bvh_pending_count(stack_node[top]);
-        walking = true;
-      }
+    uint left = n.first_or_left;  // an inner node: its children are left and left + 1
+    BvhNode child_l = bvh_node_at(left);
+    BvhNode child_r = bvh_node_at(left + 1u);
+    vec2 span_l = box_span(ray, inv_dir, child_l.lo, child_l.hi, best.t);
+    vec2 span_r = box_span(ray, inv_dir, child_r.lo, child_r.hi, best.t);
+    bool left_first = span_l.x <= span_r.x;  // the nearer child; the left one on a tie
+    uint near_child = left_first ? left : left + 1u;
+    uint far_child = left_first ? left + 1u : left;
+    vec2 near_span = left_first ? span_l : span_r;
+    vec2 far_span = left_first ? span_r : span_l;
+    if (far_span.x <= far_span.y) {
+      stack_node[top] = far_child;
+      stack_t[top] = far_span.x;
+      top++;
+    }
+    if (near_span.x <= near_span.y) {
+      stack_node[top] = near_child;
+      stack_t[top] = near_span.x;
+      top++;
     }
   }
   return best;
 }
 
-// Whether any triangle is hit closer than t_max (a shadow ray): the first hit found ends the
-// walk, in any order, so no tie rule is needed and no child is put first. The same two loops
-// as nearest_triangle_bvh: down the inner nodes, keeping one child and putting the other on
-// the stack (one pending sibling per level, within kBvhStackSize), then a leaf's triangles.
-// On lavapipe this took 2.2 and 1.7 times the shadow rays per second of one loop that popped
-// every node, leaves and inner nodes alike (docs/acceleration.md, "Measured").
+// Whether any triangle is hit closer than t_max (a shadow ray): the same walk, but the
+// first hit found ends it, in any order, so no tie rule is needed, no child is put first
+// and no entry distance is kept.
 bool occluded_bvh(Ray ray, RayShear rs, float t_max) {
   if (params.triangle_count == 0u) return false;
   vec3 inv_dir = inverse_direction(ray.dir);
   Hit none = Hit(t_max, 0.0f, 0.0f, 0u, kPrimNone);
-  // The pending nodes as bvh_pending(first_or_left, count), as in nearest_triangle_bvh.
-  uint stack_node[kBvhStackSize];
+  uint stack_node[kBvhStackSize];  // the nodes still to visit
   uint top = 0u;
-  BvhNode n = bvh_node_at(0u);  // the node the walk stands at: its first_or_left and count
-  if (!hit_box(ray, inv_dir, n.lo, n.hi, t_max)) return false;
-  while (true) {  // each way out returns
-    while (n.count == 0u) {
-      BvhNode child_l = bvh_node_at(n.first_or_left);
-      BvhNode child_r = bvh_node_at(n.first_or_left + 1u);
-      bool hit_l = hit_box(ray, inv_dir, child_l.lo, child_l.hi, t_max);
-      bool hit_r = hit_box(ray, inv_dir, child_r.lo, child_r.hi, t_max);
-      if (hit_l && hit_r) {
-        stack_node[top] = bvh_pending(child_r.first_or_left, child_r.count);
-        top++;
-        n = child_l;
-      } else if (hit_l || hit_r) {
-        n = hit_l ? child_l : child_r;
-      } else {  // nothing below this node: the next pending one
-        if (top == 0u) return false;
-        top--;
-        n.first_or_left = bvh_pending_first(stack_node[top]);
-        n.count = bvh_pending_count(stack_node[top]);
-      }
-    }
-    for (uint i = 0u; i < n.count; i++) {
-      if (hit_triangle(ray, rs, bvh_index_at(n.first_or_left + i), none).kind != kPrimNone) return true;
-    }
-    if (top == 0u) return false;
+  BvhNode root = bvh_node_at(0u);
+  if (!hit_box(ray, inv_dir, root.lo, root.hi, t_max)) return false;
+  stack_node[0] = 0u;
+  top = 1u;
+  while (top > 0u) {
     top--;
-    n.first_or_left = bvh_pending_first(stack_node[top]);
-    n.count = bvh_pending_count(stack_node[top]);
+    BvhNode n = bvh_node_at(stack_node[top]);
+    if (n.count > 0u) {  // a leaf: its triangles
+      for (uint i = 0u; i < n.count; i++) {
+        if (hit_triangle(ray, rs, bvh_index_at(n.first_or_left + i), none).kind != kPrimNone) return true;
+      }
+      continue;
+    }
+    uint left = n.first_or_left;  // an inner node: the children whose boxes the ray meets
+    BvhNode child_l = bvh_node_at(left);
+    BvhNode child_r = bvh_node_at(left + 1u);
+    if (hit_box(ray, inv_dir, child_r.lo, child_r.hi, t_max)) {
+      stack_node[top] = left + 1u;
+      top++;
+    }
+    if (hit_box(ray, inv_dir, child_l.lo, child_l.hi, t_max)) {
+      stack_node[top] = left;
+      top++;
+    }
   }
   return false;
 }

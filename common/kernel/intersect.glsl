@@ -9,6 +9,7 @@
 #include "common/kernel/camera.glsl"
 #include "common/kernel/spawn.glsl"
 #include "common/kernel/texture_lookup.glsl"
+#include "common/kernel/sphere_power.glsl"
 
 const float kInfinity = 3.402823466e38f;  // the largest float: "no hit yet"
 
@@ -127,32 +128,6 @@ Hit nearest_triangle(Ray ray, RayShear rs, Hit best);
 // float epsilons for the rounding of f = origin - centre, of the origin itself (the last
 // hit's rounding) and of the products below.
 const float kSphereRootError = 1e-6f;
-
-// The power of the ray origin o with respect to the sphere, |o - centre|^2 - r^2 (< 0
-// inside; the product of the distances to the two roots), written from the world origin:
-// |o|^2 - 2 o.centre + (|centre|^2 - r^2), the last term as (m - r)(m + r) plus the other
-// two coordinates squared, m the centre's largest coordinate. Returns the power and the
-// size of the numbers summed for it, the scale of its rounding error. smallpt's walls have
-// centres 1e5 away and the room near the world origin: there f = o - centre is known only
-// to 1/128 per coordinate, this form to the rounding of o.centre (1e7: about 1), since
-// m - r is exact for m near r. A small sphere far from the world origin is the other way.
-vec2 sphere_power_from_world_origin(vec3 o, vec3 center, float radius) {
-  vec3 a = abs(center);
-  float m = a.z;
-  float others = a.x * a.x + a.y * a.y;
-  if (a.x >= a.y && a.x >= a.z) {
-    m = a.x;
-    others = a.y * a.y + a.z * a.z;
-  } else if (a.y >= a.z) {
-    m = a.y;
-    others = a.x * a.x + a.z * a.z;
-  }
-  float lead = (m - radius) * (m + radius);
-  float oo = dot(o, o);
-  float power = (oo + (lead + others)) - 2.0f * dot(o, center);
-  float scale = oo + 2.0f * dot(abs(o), a) + abs(lead) + others;
-  return vec2(power, scale);
-}
 
 // Returns a hit with sphere `index` if it is nearer than `best`, else `best`.
 // Both differences of squares are taken as (x - r)(x + r) of lengths, not x^2 - r^2: with

@@ -10,9 +10,9 @@
 #include "common/kernel/camera.glsl"
 #include "common/kernel/color.glsl"
 
-// Returns (sum of the samples' radiance, sqrt of the sum of their squared luminance); the
-// host squares the latter and adds both up in double precision (film.cpp) for the mean and
-// its variance. The root of the sum of squares is kept as scale x sqrt(ssq) (LAPACK's
+// Returns the sum of the samples' radiance and, in its slot kPassRootSumSquares
+// (scene_types.h), the root of the sum of their squared luminance; the host squares the
+// latter and adds both up in double precision (film.cpp) for the mean and its variance. The root of the sum of squares is kept as scale x sqrt(ssq) (LAPACK's
 // nrm2): a square is never formed in float, where radiance 1e20 would overflow (1e40) and
 // 1e-20 flush to zero (1e-40 is below the smallest normal float; GPUs flush denormals).
 vec4 render_pixel(uint x, uint y) {
@@ -43,7 +43,9 @@ vec4 render_pixel(uint x, uint y) {
       ssq += r * r;
     }
   }
-  return vec4(sum, scale * sqrt(ssq));
+  vec4 result = vec4(sum, 0.0f);
+  result[kPassRootSumSquares] = scale * sqrt(ssq);
+  return result;
 }
 
 #endif  // PT_RENDER_PIXEL_GLSL

@@ -64,10 +64,10 @@ const uint kSamplerSobol = 1u;        // Owen-scrambled Sobol points (common/ker
 // article's brute force), or the bounding volume hierarchy (common/scene/bvh.h).
 const uint kAccelNone = 0u;
 const uint kAccelBvh = 1u;
-// The deepest a BVH may be: the traversal's stack (common/kernel/bvh.glsl) holds one
-// node per level, and the build (common/scene/bvh.cpp) never goes deeper.
+// The deepest a BVH may be: the traversal's stack (common/kernel/bvh.glsl, gpu/bvh_walk.glsl)
+// holds one node per level, and the build (common/scene/bvh.cpp) never goes deeper.
 const uint kBvhStackSize = 64u;
-// The stack holds a pending node as one number, its first_or_left shifted above this many
+// The GPU's stack (gpu/bvh_walk.glsl) holds a node as one number, its first_or_left above this many
 // bits of its count (a leaf holds at most kBvhMaxLeaf = 4 triangles, common/scene/bvh.h),
 // so first_or_left stays below 2^29 (build_bvh refuses more than 2^28 triangles).
 const uint kBvhCountBits = 3u;
@@ -117,9 +117,11 @@ const uint kFilterNearest = 1u;       // glTF magFilter NEAREST (9728): the near
 const uint kCounterDepthCap = 0u;       // paths stopped by the depth cap (a safety net)
 const uint kCounterZeroPdf = 1u;        // paths ended by a zero pdf or a non-finite weight
 const uint kCounterNonFinite = 2u;      // samples dropped because they were NaN or Inf
-const uint kCounterNonFinitePixel = 3u; // the lowest pixel index with a dropped sample
-const uint kCounterLoopLimit = 4u;      // pixel passes whose loops the driver cut short (lavapipe)
-const uint kCounterCount = 5u;
+const uint kCounterNonFinitePixel = 3u; // not a count: the lowest pixel index with a dropped sample (atomicMin)
+const uint kCounterCount = 4u;
+// The slot of render_pixel()'s vec4 (render_pixel.glsl) that holds the root of the sum of the
+// samples' squared luminance; the others hold the sum of their radiance.
+const uint kPassRootSumSquares = 3u;
 
 // Every vec3 sits at a 16-byte offset and is followed by a 4-byte scalar, and every struct
 // is a multiple of 16 bytes: then std430 (the storage buffers), std140 (the uniform blocks

@@ -3,6 +3,7 @@
 // pass at a time; the film (film.h) adds the passes up.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -70,10 +71,30 @@ struct VulkanDevice {
   Type type;
 };
 
+// "No pixel" in kCounterNonFinitePixel.
+constexpr uint kNoPixel = 0xffffffffu;
+
 // What a pass reports besides its image.
 struct PassResult {
-  double kernel_seconds = 0.0;       // the time the kernel ran (GPU: timestamp queries)
-  uint counters[kCounterCount] = {};  // the kernel's event counters (scene_types.h)
+  double kernel_seconds = 0.0;  // the time the kernel ran (GPU: timestamp queries)
+  // The kernel's event counters (scene_types.h): counts that it adds to, and one pixel index
+  // that it lowers (atomicMin), kNoPixel while no sample was dropped: non_finite_pixel().
+  uint counters[kCounterCount] = {};
+  // Set when the backend could not render the pass whole (a GPU driver that cut the kernel's
+  // loops short: gpu/loop_limit.h): what happened and what to do, one line. A wrong pass.
+  std::string cut_short;
+
+  PassResult() { counters[kCounterNonFinitePixel] = kNoPixel; }
+  uint non_finite_pixel() const { return counters[kCounterNonFinitePixel]; }
+  // Takes in another part of the same pass (other samples or pixels): times and counts
+  // add up, the pixel index is the lower one, and a part cut short cuts the whole.
+  void add(const PassResult& part) {
+    kernel_seconds += part.kernel_seconds;
+    for (uint c = 0; c < kCounterCount; c++) {
+      counters[c] = c == kCounterNonFinitePixel ? std::min(counters[c], part.counters[c]) : counters[c] + part.counters[c];
+    }
+    if (cut_short.empty()) cut_short = part.cut_short;
+  }
 };
 
 class Backend {
@@ -88,7 +109,8 @@ class Backend {
   // the passes that follow (render() owns it).
   virtual void set_scene(const Scene& scene, uint features, const Bvh* bvh) = 0;
   // Renders params.sample_count samples of every pixel into out (width * height values of
-  // render_pixel(): rgb sum, squared-luminance sum).
+  // render_pixel(): the radiance sum, and the root of the squared luminances' sum in slot
+  // kPassRootSumSquares).
   virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
 };
 

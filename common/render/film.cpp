@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/kernel/scene_types.h"
+
 namespace pt {
 
 Film::Film(int width, int height)
@@ -15,7 +17,7 @@ Film::Film(int width, int height)
 void Film::add_pass(std::span<const glm::vec4> pass, std::uint64_t samples) {
   for (std::size_t i = 0; i < pass.size(); i++) {
     for (int c = 0; c < 3; c++) sums_[4 * i + c] += double(pass[i][c]);
-    double norm = double(pass[i][3]);  // the root of the pass's sum of squared luminance
+    double norm = double(pass[i][kPassRootSumSquares]);  // the root of the pass's sum of squared luminance
     sums_[4 * i + 3] += norm * norm;
   }
   spp_ += samples;

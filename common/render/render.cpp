@@ -56,7 +56,7 @@ void RenderCounters::add(const PassResult& pass) {
   depth_cap += pass.counters[kCounterDepthCap];
   zero_pdf += pass.counters[kCounterZeroPdf];
   non_finite += pass.counters[kCounterNonFinite];
-  first_non_finite_pixel = std::min(first_non_finite_pixel, pass.counters[kCounterNonFinitePixel]);
+  first_non_finite_pixel = std::min(first_non_finite_pixel, pass.non_finite_pixel());
 }
 
 FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
@@ -122,13 +122,8 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
       if (h.save && done > 0) h.save(result);
       break;
     }
-    if (uint cut = pass_result.counters[kCounterLoopLimit]) {
-      // The driver ended the loops of `cut` pixels early even at one sample per invocation
-      // (gpu/kernel_main.glsl): a wrong pass, never added to the film.
-      result.device_error = "the Vulkan driver cut the loops of " + std::to_string(cut) +
-                            " pixels short (lavapipe ends an invocation after 65535 loop iterations), so pass " +
-                            std::to_string(index + 1) + " would be a wrong image; use --backend cpu, a lower albedo " +
-                            "or fewer triangles";
+    if (!pass_result.cut_short.empty()) {  // the backend could not render it whole: never added to the film
+      result.device_error = "pass " + std::to_string(index + 1) + " would be a wrong image: " + pass_result.cut_short;
       if (h.save && done > 0) h.save(result);
       break;
     }

@@ -55,9 +55,6 @@ struct RenderHooks {
   const Bvh* bvh = nullptr;
 };
 
-// "No pixel" in kCounterNonFinitePixel.
-constexpr std::uint32_t kNoPixel = 0xffffffffu;
-
 // The kernels' event counters, summed over the passes (scene_types.h, kCounter*).
 struct RenderCounters {
   std::uint64_t depth_cap = 0;   // paths stopped by the depth cap

@@ -131,7 +131,7 @@ TEST_CASE("every stage: the GPU's image with the BVH is its image without, and a
 
 // The BVH on both backends over a scene of more than 100k triangles: the Cornell box with a
 // diffuse icosphere of 20 x 72^2 = 103,680 triangles in it. Each stage's CPU and GPU images
-// of one seed agree to rounding: the traversal is one source (common/kernel/bvh.glsl).
+// of one seed agree to rounding: the walks find the same hits (common/kernel/bvh.glsl, gpu/bvh_walk.glsl).
 TEST_CASE("stages 1-4: CPU and GPU agree to rounding through the BVH of a 100k-triangle scene",
           "[stage1][stage2][stage3][stage4][gpu][bvh][large]") {
   Scene scene = make_builtin_scene("cornell");
