@@ -23,8 +23,8 @@ UniformTriangles uniform_triangles(const VulkanContext& context, std::span<const
   return u;
 }
 
-ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
-                                 uint32_t uniform_triangles)
+KernelProgram::KernelProgram(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
+                             uint32_t uniform_triangles)
     : device_(context.device()) {
   try {
     // The layout of gpu/kernel_bindings.glsl: what kind of buffer sits at each binding.
@@ -62,36 +62,49 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const u
     pipe_info.layout = layout_;
     check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_),
           "compiling the kernel");
-
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 3},
-                                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-                                     {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
-    VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool_info.maxSets = 1;
-    pool_info.poolSizeCount = 3;
-    pool_info.pPoolSizes = sizes;
-    check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_), "creating a descriptor pool");
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = pool_;
-    alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &set_layout_;
-    check(vkAllocateDescriptorSets(device_, &alloc, &set_), "allocating a descriptor set");
   } catch (...) {
     release();
     throw;
   }
 }
 
-ComputePipeline::~ComputePipeline() { release(); }
+KernelProgram::~KernelProgram() { release(); }
 
-void ComputePipeline::release() {
-  if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
+void KernelProgram::release() {
   if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
   if (module_) vkDestroyShaderModule(device_, module_, nullptr);
   if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
   if (set_layout_) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
-  pool_ = VK_NULL_HANDLE, pipeline_ = VK_NULL_HANDLE, module_ = VK_NULL_HANDLE;
-  layout_ = VK_NULL_HANDLE, set_layout_ = VK_NULL_HANDLE;
+  pipeline_ = VK_NULL_HANDLE, module_ = VK_NULL_HANDLE, layout_ = VK_NULL_HANDLE, set_layout_ = VK_NULL_HANDLE;
+}
+
+ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
+                                 uint32_t uniform_triangles)
+    : ComputePipeline(context, std::make_shared<const KernelProgram>(context, spirv, features, uniform_triangles)) {}
+
+ComputePipeline::ComputePipeline(const VulkanContext& context, std::shared_ptr<const KernelProgram> program)
+    : device_(context.device()), program_(std::move(program)) {
+  // One descriptor set of the program's layout, from a pool of its own.
+  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 3},
+                                   {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+                                   {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
+  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = 3;
+  pool_info.pPoolSizes = sizes;
+  check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_), "creating a descriptor pool");
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = pool_;
+  alloc.descriptorSetCount = 1;
+  const VkDescriptorSetLayout set_layout = program_->set_layout();
+  alloc.pSetLayouts = &set_layout;
+  VkResult allocated = vkAllocateDescriptorSets(device_, &alloc, &set_);
+  if (allocated != VK_SUCCESS) vkDestroyDescriptorPool(device_, pool_, nullptr);
+  check(allocated, "allocating a descriptor set");
+}
+
+ComputePipeline::~ComputePipeline() {
+  if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
 }
 
 void ComputePipeline::bind_buffers(const Buffer* const (&buffers)[kBindingCount]) {
@@ -116,8 +129,8 @@ void ComputePipeline::bind_buffers(const Buffer* const (&buffers)[kBindingCount]
 }
 
 void ComputePipeline::record_dispatch(VkCommandBuffer cmd, uint32_t groups_x, uint32_t groups_y) const {
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program_->pipeline());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program_->layout(), 0, 1, &set_, 0, nullptr);
   vkCmdDispatch(cmd, groups_x, groups_y, 1);
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 
 #include "common/kernel/scene_types.h"
@@ -35,13 +36,44 @@ struct UniformTriangles {
 };
 UniformTriangles uniform_triangles(const VulkanContext& context, std::span<const Triangle> triangles);
 
-class ComputePipeline {
+// A stage's kernel compiled by the driver for one feature set: the descriptor set's layout
+// (gpu/kernel_bindings.glsl), the pipeline layout, the shader module and the pipeline. On
+// lavapipe compiling one takes 0.5-2 s of CPU, most of a short render's time; a
+// DeviceSession (device_session.h) keeps them so that each is compiled once per process.
+class KernelProgram {
  public:
   // `features`: the value of the kernel's specialization constant 0, kSceneFeatures
   // (common/kernel/features.glsl); `uniform_triangles`: constant 1, kUniformTriangles
   // (gpu/kernel_bindings.glsl), how many triangles binding 8 holds, 0: read binding 0.
+  KernelProgram(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
+                uint32_t uniform_triangles = 0);
+  ~KernelProgram();
+  KernelProgram(const KernelProgram&) = delete;
+  KernelProgram& operator=(const KernelProgram&) = delete;
+
+  VkDescriptorSetLayout set_layout() const { return set_layout_; }
+  VkPipelineLayout layout() const { return layout_; }
+  VkPipeline pipeline() const { return pipeline_; }
+
+ private:
+  void release();
+
+  VkDevice device_;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkShaderModule module_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+// A compiled kernel with its own descriptor set: what one backend binds its buffers to and
+// dispatches. Several may share one KernelProgram, each with its own buffers.
+class ComputePipeline {
+ public:
+  // Compiles a program of its own (see KernelProgram).
   ComputePipeline(const VulkanContext& context, std::span<const uint32_t> spirv, uint32_t features,
                   uint32_t uniform_triangles = 0);
+  // Uses one compiled before, on the same device.
+  ComputePipeline(const VulkanContext& context, std::shared_ptr<const KernelProgram> program);
   ~ComputePipeline();
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;
@@ -52,13 +84,10 @@ class ComputePipeline {
   void record_dispatch(VkCommandBuffer cmd, uint32_t groups_x, uint32_t groups_y) const;
 
  private:
-  void release();
+  void allocate_set();
 
   VkDevice device_;
-  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkShaderModule module_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  std::shared_ptr<const KernelProgram> program_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
 };

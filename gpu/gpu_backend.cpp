@@ -20,6 +20,7 @@
 #include "common/scene/scene.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/device_limits.h"
+#include "gpu/device_session.h"
 #include "gpu/fault.h"
 #include "gpu/loop_limit.h"
 
@@ -33,8 +34,8 @@ constexpr uint64_t kFenceTimeoutNs = 120'000'000'000;    // a dispatch that take
 
 class GpuBackend : public Backend, public DeviceMemoryLimits {
  public:
-  GpuBackend(const StageKernels& kernels, const std::string& device)
-      : context_(device), kernels_(kernels) {
+  GpuBackend(const StageKernels& kernels, std::shared_ptr<DeviceSession> session)
+      : session_(std::move(session)), context_(session_->context()), kernels_(kernels) {
     VkDevice dev = context_.device();
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = context_.command_pool();
@@ -58,6 +59,8 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     vkDeviceWaitIdle(dev);
     if (queries_) vkDestroyQueryPool(dev, queries_, nullptr);
     if (fence_) vkDestroyFence(dev, fence_, nullptr);
+    // The device may serve other backends after this one (DeviceSession).
+    if (cmd_) vkFreeCommandBuffers(dev, context_.command_pool(), 1, &cmd_);
   }
 
   std::string kind() const override { return "gpu"; }
@@ -104,9 +107,12 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     upload(environment_tables_, env ? env->table.data() : nullptr, env ? env->table.size() * sizeof(float) : 0,
            "the environment map's sampling tables need");
     // One pipeline per feature set, made on first use: the driver compiles the kernel with
-    // the specialization constant kSceneFeatures fixed, and drops the code it excludes.
+    // the specialization constant kSceneFeatures fixed, and drops the code it excludes (once
+    // per session: other backends on the same DeviceSession reuse the compiled program).
     std::unique_ptr<ComputePipeline>& pipeline = pipelines_[{features, uniform.constant}];
-    if (!pipeline) pipeline = std::make_unique<ComputePipeline>(context_, kernels_.spirv, features, uniform.constant);
+    if (!pipeline) {
+      pipeline = std::make_unique<ComputePipeline>(context_, session_->program(kernels_.spirv, features, uniform.constant));
+    }
     pipeline_ = pipeline.get();
   }
 
@@ -232,7 +238,8 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     return double(stamps[1] - stamps[0]) * double(context_.properties().limits.timestampPeriod) * 1e-9;
   }
 
-  VulkanContext context_;
+  std::shared_ptr<DeviceSession> session_;  // first: it outlives the buffers below
+  const VulkanContext& context_;
   StageKernels kernels_;
   std::map<std::pair<uint, uint32_t>, std::unique_ptr<ComputePipeline>> pipelines_;  // by features, kUniformTriangles
   ComputePipeline* pipeline_ = nullptr;                          // the current scene's
@@ -253,7 +260,11 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
 }  // namespace
 
 std::unique_ptr<Backend> create_backend(const StageKernels& kernels, const std::string& device) {
-  return std::make_unique<GpuBackend>(kernels, device);
+  return create_backend(kernels, std::make_shared<DeviceSession>(device));
+}
+
+std::unique_ptr<Backend> create_backend(const StageKernels& kernels, std::shared_ptr<DeviceSession> session) {
+  return std::make_unique<GpuBackend>(kernels, std::move(session));
 }
 
 std::vector<VulkanDevice> vulkan_devices() {

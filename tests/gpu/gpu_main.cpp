@@ -16,7 +16,7 @@
 
 int main(int argc, char** argv) {
   try {
-    auto probe = pt::gpu::create_backend(stage1::kernels(), "");
+    auto probe = pt::gpu::create_backend(stage1::kernels(), pt::test::test_device());
     std::printf("GPU tests run on '%s'\n", probe->device_name().c_str());
   } catch (const pt::Error& e) {
     // No device: skipped. Validation asked for but its layer missing: a failure to fix.
@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   }
   pt::test::backend_under_test = "gpu";
   int failed = Catch::Session().run(argc, argv);
+  pt::test::release_test_device();  // its destruction is checked by the validation layer too
   // PT_VULKAN_VALIDATION=1 (the ctest entry pt_gpu_tests_validation): any error the
   // validation layer reported fails the run.
   if (int errors = pt::gpu::validation_errors()) {

@@ -11,12 +11,23 @@
 #include "common/render/render.h"
 #include "common/scene/scene.h"
 
+namespace pt::gpu {
+class DeviceSession;
+}
+
 namespace pt::test {
 
 // "cpu" or "gpu"; set by the test executable's main().
 extern std::string backend_under_test;
 
+// A new backend of that kind ("cpu" or "gpu"). Every "gpu" backend is made on test_device().
 std::unique_ptr<Backend> make_backend(const std::string& kind, const StageKernels& kernels);
+
+// The test program's one Vulkan device (gpu/device_session.h), made on first use, so that
+// each kernel is compiled once per feature set, not once per render; release_test_device()
+// destroys it (pt_gpu_tests' main, before it reads the validation layer's error count).
+std::shared_ptr<gpu::DeviceSession> test_device();
+void release_test_device();
 
 // The seed a test uses: base + PT_TEST_SEED_OFFSET (0 when unset).
 std::uint32_t test_seed(std::uint32_t base);
