@@ -137,7 +137,7 @@ TEST_CASE("transmissionTexture: a rough plane of transmissionFactor 1 whose text
           "stages 2 to 5",
           "[stage2][stage3][stage4][stage5][transmission][transmission_texture][statistical]") {
   GltfBrdf b;
-  b.base = {0.9, 0.7, 0.5}, b.metallic = 0.2, b.roughness = 0.4;
+  b.base = {0.9, 0.7, 0.5}, b.metallic = 0.3, b.roughness = 0.5;
   // G, B and A differ from R: only R (linear, not sRGB-decoded) scales the factor.
   Scene scene = textured_plane(b, 1.0, pt_test::rgba(128, 0, 255, 255), pt_test::rgba(0, 255, 255, 255), "textured");
   REQUIRE(scene.materials.at(0).kind == kMaterialDielectric);
