@@ -89,6 +89,8 @@ EXPERIMENTS = [  # in the order run, the most telling first
     ("spheres", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
     ("14_transmission", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
     ("14_transmission", "control", "the Lambert control", ["--lambert"], "lambert"),
+    ("04_lights", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
+    ("04_lights", "control", "the Lambert control", ["--lambert"], "lambert"),
 ]
 
 COLUMNS = ["id", "experiment", "what", "size", "spp", "mean_cycles", "mean_stage5", "mean_ratio", "mean_noise",
