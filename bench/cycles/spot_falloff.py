@@ -68,7 +68,8 @@ def cone_power(falloff, inner, outer, n=20000):
 
 
 def full_angle(falloff, inner, outer, n=20000):
-    """The largest angle inside which the falloff is within 1e-6 of its value on the axis' cos."""
+    """The angle out to which the spot is fully lit: the glTF falloff 1, Blender's its cos(theta)
+    factor alone (the smoothstep 1); within 1e-6, on a grid of n steps over the outer angle."""
     theta = 0.0
     for k in range(n + 1):
         t = outer * k / n
