@@ -33,6 +33,19 @@ def parse_args():
     p.add_argument("--specular-zero", action="store_true",
                    help="a diagnosis: each Principled BSDF's Specular input set to 0 "
                         "(its diffuse alone on a dielectric)")
+    # Diagnoses of the residuals (bench/cycles/gltf_residuals.py): each changes one thing.
+    p.add_argument("--set-input", action="append", default=[], metavar="NAME=VALUE",
+                   help="a diagnosis: every Principled BSDF's input NAME unlinked and set to VALUE")
+    p.add_argument("--distribution", default=None, help="a diagnosis: every Principled BSDF's distribution "
+                   "(GGX or MULTI_GGX)")
+    p.add_argument("--interpolation", default=None, help="a diagnosis: every Image Texture node's "
+                   "interpolation (Linear, Closest, Cubic)")
+    p.add_argument("--spot-blend", type=float, default=None, help="a diagnosis: every spot light's blend")
+    p.add_argument("--no-normal-map", action="store_true",
+                   help="a diagnosis: every Principled BSDF's Normal input unlinked (before --lambert)")
+    p.add_argument("--bare-default-material", action="store_true",
+                   help="a diagnosis: each mesh object without a material gets the glTF default one "
+                        "(metallic 1, roughness 1) times its first colour attribute, as glTF defines it")
     return p.parse_args(argv)
 
 
@@ -90,6 +103,51 @@ def lambert_control():
             tree.links.new(p.outputs["BSDF"], add.inputs[1])
 
 
+def diagnoses(args):
+    """The one-change diagnoses of --set-input, --distribution, --interpolation, --spot-blend and
+    --bare-default-material, each printed."""
+    principled = [n for m in bpy.data.materials if m.use_nodes for n in m.node_tree.nodes
+                  if n.type == "BSDF_PRINCIPLED"]
+    for item in args.set_input:
+        name, value = item.split("=")
+        for p in principled:
+            for link in list(p.inputs[name].links):
+                p.id_data.links.remove(link)
+            p.inputs[name].default_value = float(value)
+        print(f"render_cycles_imported.py: diagnosis: Principled '{name}' = {value} on {len(principled)} nodes")
+    if args.distribution:
+        for p in principled:
+            p.distribution = args.distribution
+        print(f"render_cycles_imported.py: diagnosis: distribution {args.distribution}")
+    if args.interpolation:
+        images = [n for m in bpy.data.materials if m.use_nodes for n in m.node_tree.nodes if n.type == "TEX_IMAGE"]
+        for n in images:
+            n.interpolation = args.interpolation
+        print(f"render_cycles_imported.py: diagnosis: interpolation {args.interpolation} on {len(images)} images")
+    if args.spot_blend is not None:
+        for light in bpy.data.lights:
+            if light.type == "SPOT":
+                light.spot_blend = args.spot_blend
+        print(f"render_cycles_imported.py: diagnosis: spot blend {args.spot_blend}")
+    if args.bare_default_material:
+        bare = [o for o in bpy.data.objects if o.type == "MESH" and not any(o.data.materials)]
+        for o in bare:
+            m = bpy.data.materials.new("glTF default")
+            m.use_nodes = True
+            p = m.node_tree.nodes["Principled BSDF"]
+            p.inputs["Metallic"].default_value = 1.0
+            p.inputs["Roughness"].default_value = 1.0
+            p.distribution = "GGX"
+            attrs = o.data.color_attributes
+            if len(attrs):
+                c = m.node_tree.nodes.new("ShaderNodeVertexColor")
+                c.layer_name = attrs[0].name
+                m.node_tree.links.new(c.outputs["Color"], p.inputs["Base Color"])
+            o.data.materials.append(m)
+        print(f"render_cycles_imported.py: diagnosis: the glTF default material on {len(bare)} bare objects "
+              f"({', '.join(o.name + ': ' + str([a.name for a in o.data.color_attributes]) for o in bare)})")
+
+
 def set_sky(sky):
     world = bpy.context.scene.world
     background = world.node_tree.nodes["Background"]
@@ -108,6 +166,13 @@ def main():
         fail("--sky must be R,G,B (three non-negative numbers)")
     clear_startup_scene()
     import_as_blender_does(args.scene)
+    if args.no_normal_map:
+        for m in bpy.data.materials:
+            for n in (m.node_tree.nodes if m.use_nodes else []):
+                if n.type == "BSDF_PRINCIPLED":
+                    for link in list(n.inputs["Normal"].links):
+                        m.node_tree.links.remove(link)
+        print("render_cycles_imported.py: diagnosis: normal maps unlinked")
     if args.lambert:
         lambert_control()
     for p in [n for m in bpy.data.materials if m.use_nodes for n in m.node_tree.nodes if n.type == "BSDF_PRINCIPLED"]:
@@ -115,6 +180,7 @@ def main():
             for link in list(p.inputs["Specular"].links):
                 p.id_data.links.remove(link)
             p.inputs["Specular"].default_value = 0.0
+    diagnoses(args)
     set_sky(sky)
     configure(args)
     render_and_report(args)

@@ -249,6 +249,7 @@ const uint kSlotMetallicRoughness = 2u;
 const uint kSlotSpecular = 3u;
 const uint kSlotSpecularColor = 4u;
 const uint kSlotNormal = 5u;
+const uint kSlotTransmission = 6u;
 
 // The textures of one material, parallel to materials[] (empty when the scene has no
 // textures and no vertex colours). Each slot: a texture index (or kNoTexture) and its
@@ -286,6 +287,10 @@ struct MaterialTextures {
   uint normal;                 // textures[] index, or kNoTexture
   vec3 normal_t;
   float normal_scale;          // normalTexture.scale: scales the x and y of the map's normal
+  vec3 transmission_s;         // KHR_materials_transmission's transmissionTexture (linear: R
+  uint transmission;           // scales transmissionFactor, Material.transmission)
+  vec3 transmission_t;
+  float pad5;                  // unused
 };
 
 // What a triangle carries besides its corners, parallel to triangles[] (empty when the
@@ -351,12 +356,13 @@ static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParam
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);
 static_assert(offsetof(FrameParams, accel) == 136 && offsetof(FrameParams, sampler_kind) == 140);
 static_assert(sizeof(Texture) == 32);
-static_assert(sizeof(MaterialTextures) == 224 && offsetof(MaterialTextures, emissive_s) == 32);
+static_assert(sizeof(MaterialTextures) == 256 && offsetof(MaterialTextures, emissive_s) == 32);
 static_assert(offsetof(MaterialTextures, base_alpha) == 96 && offsetof(MaterialTextures, tex_coord_sets) == 104);
 static_assert(offsetof(MaterialTextures, specular_s) == 112 && offsetof(MaterialTextures, specular_t) == 128);
 static_assert(offsetof(MaterialTextures, specular_color_s) == 144 && offsetof(MaterialTextures, specular_color_t) == 160);
 static_assert(offsetof(MaterialTextures, specular_color_factor) == 176);
 static_assert(offsetof(MaterialTextures, normal_s) == 192 && offsetof(MaterialTextures, normal_scale) == 220);
+static_assert(offsetof(MaterialTextures, transmission_s) == 224 && offsetof(MaterialTextures, transmission_t) == 240);
 static_assert(sizeof(TriangleShading) == 96 && offsetof(TriangleShading, normal2) == 32);
 static_assert(offsetof(TriangleShading, tangent0) == 48 && offsetof(TriangleShading, handedness2) == 92);
 static_assert(offsetof(MaterialTextures, metallic_roughness_s) == 64 && offsetof(MaterialTextures, enabled) == 92);

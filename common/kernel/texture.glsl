@@ -1,11 +1,11 @@
 // Textures and vertex colours (issue #19; the contract (README.md), "Materials"): glTF's
-// base colour, emissive and metallic-roughness textures and KHR_materials_specular's two,
-// each read through its TEXCOORD_0 or TEXCOORD_1 and KHR_texture_transform with the
-// sampler's wrap modes and bilinear (or nearest) filtering, and COLOR_0, which multiplies
-// the base colour. Beyond the article, whose materials are
+// base colour, emissive and metallic-roughness textures, KHR_materials_specular's two and
+// KHR_materials_transmission's, each read through its TEXCOORD_0 or TEXCOORD_1 and
+// KHR_texture_transform with the sampler's wrap modes and bilinear (or nearest) filtering,
+// and COLOR_0, which multiplies the base colour. Beyond the article, whose materials are
 // constant. Texels are 8-bit RGBA (texels[], the texture table textures[]), decoded at
 // lookup: sRGB to linear for base colour, emissive and specular colour, linear for
-// metallic-roughness and specular.
+// metallic-roughness, specular and transmission.
 // Every function here runs only in kernels whose scene has kFeatureTextures (has_feature):
 // without it surface_material() is materials[surface.material], as before.
 #ifndef PT_TEXTURE_GLSL
@@ -65,9 +65,20 @@ Material with_specular_textures(Material m, MaterialTextures mt, TriangleAttribu
   return m;
 }
 
+// KHR_materials_transmission's transmissionTexture at a point of a glTF dielectric: its R
+// (linear) scales the transmission (transmissionFactor), which picks the glass part
+// (gltf_dielectric.glsl choose_gltf_lobe).
+Material with_transmission_texture(Material m, MaterialTextures mt, TriangleAttributes a, float b1, float b2) {
+  if (mt.transmission == kNoTexture) return m;
+  vec2 uv = slot_uv(mt.tex_coord_sets, kSlotTransmission, vec3(mt.transmission_s), vec3(mt.transmission_t), a, b1, b2);
+  m.transmission = m.transmission * texture_lookup(mt.transmission, uv, false).x;
+  return m;
+}
+
 // Material `material` at the point (b1, b2) of triangle `tri`: base colour x base colour
 // texture x COLOR_0, emission x emissive texture, metallic = factor x B and roughness =
-// factor x G of the metallic-roughness texture, and a glTF dielectric's specular textures;
+// factor x G of the metallic-roughness texture, and a glTF dielectric's specular and
+// transmission textures;
 // each texture read through its slot's texture coordinate set (slot_uv).
 Material textured_material(uint material, uint tri, float b1, float b2) {
   Material m = materials[material];
@@ -93,7 +104,10 @@ Material textured_material(uint material, uint tri, float b1, float b2) {
     vec4 r = texture_lookup(mt.metallic_roughness, uv, false);
     m = with_metallic_roughness(m, mt.metallic_factor * r.z, mt.roughness_factor * r.y);
   }
-  if (has_feature(kFeatureDielectric) && m.kind == kMaterialDielectric) m = with_specular_textures(m, mt, a, b1, b2);
+  if (has_feature(kFeatureDielectric) && m.kind == kMaterialDielectric) {
+    m = with_specular_textures(m, mt, a, b1, b2);
+    m = with_transmission_texture(m, mt, a, b1, b2);
+  }
   return m;
 }
 

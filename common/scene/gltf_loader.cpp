@@ -167,12 +167,12 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
                     " entries, not a multiple of 3 as triangles need: " + gltf::kReexport);
   }
   uint material = material_index(prim.material);
-  // TEXCOORD_0 and TEXCOORD_1 where a texture of the material reads them, COLOR_0 where the
-  // primitive has one; the attributes too where the material has an alpha mask.
+  // TEXCOORD_n where a texture (slots by kSlot*) reads it, COLOR_0 where the primitive has one.
   const MaterialTextures& mt = material_textures_[material];
-  const uint slots[6] = {mt.base_color, mt.emissive, mt.metallic_roughness, mt.specular, mt.specular_color, mt.normal};
+  const uint slots[7] = {mt.base_color, mt.emissive, mt.metallic_roughness, mt.specular, mt.specular_color,
+                         mt.normal, mt.transmission};
   bool reads_set[2] = {false, false};
-  for (uint k = 0; k < 6; ++k) {
+  for (uint k = 0; k < 7; ++k) {
     if (slots[k] != kNoTexture) reads_set[(mt.tex_coord_sets >> k) & 1u] = true;
   }
   const bool textured = reads_set[0] || reads_set[1];
@@ -263,7 +263,7 @@ uint SceneBuilder::material_index(int gltf_index) {
                    : gltf::convert_material(model_, gltf_index, file_);
   // Its textures (noted now, decoded by take() if a drawn triangle uses them).
   material_textures_.push_back(gltf_index == -1 ? no_material_textures()
-                                                : textures_.material_textures(gltf_index, m.kind == kMaterialDielectric));
+                                                : textures_.material_textures(gltf_index, m));
   return materials_[gltf_index] = scene_.add_material(m);
 }
 

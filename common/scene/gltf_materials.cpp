@@ -94,10 +94,6 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
   float t = checked_float(file, transmission,
                           where + ".extensions.KHR_materials_transmission.transmissionFactor", 0.0, 1.0);
   float eta = checked_float(file, ior, where + ".extensions.KHR_materials_ior.ior", 1.0);
-  auto tx = m.extensions.find("KHR_materials_transmission");
-  if (tx != m.extensions.end() && tx->second.Has("transmissionTexture"))
-    warn_once(file + ": KHR_materials_transmission's transmissionTexture is not read; transmissionFactor is used "
-                     "everywhere");
   // MASK cuts holes (gltf_textures.cpp reads its cutoff; intersect.glsl cut_out).
   if (m.alphaMode != "OPAQUE" && m.alphaMode != "MASK")
     warn_once(file + ": scene uses alphaMode " + printable(m.alphaMode) + "; surfaces are drawn opaque");
@@ -112,6 +108,9 @@ Material convert_material(const tinygltf::Model& model, int index, const std::st
   pbr_material.specular_color = specular_color_factor(m.extensions, where, file);
   pbr_material.emission = emission, pbr_material.double_sided = m.doubleSided;
   pbr_material.textured_metallic_roughness = pbr.metallicRoughnessTexture.index >= 0;
+  // transmissionTexture's R scales the factor (gltf_textures.cpp reads it, texture.glsl applies it).
+  auto tx = m.extensions.find("KHR_materials_transmission");
+  pbr_material.textured_transmission = tx != m.extensions.end() && tx->second.Has("transmissionTexture");
   return make_gltf_pbr_material(pbr_material);
 }
 

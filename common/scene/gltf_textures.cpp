@@ -166,7 +166,7 @@ uint TextureBuilder::texture_slot(const tinygltf::TextureInfo& info, const std::
   return by_texture_[info.index] = uint(table_.size() - 1);
 }
 
-MaterialTextures TextureBuilder::material_textures(int material, bool specular_layer) {
+MaterialTextures TextureBuilder::material_textures(int material, const Material& made) {
   const tinygltf::Material& m = model_.materials[material];
   const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
   std::string where = "materials[" + std::to_string(material) + "]";
@@ -197,10 +197,16 @@ MaterialTextures TextureBuilder::material_textures(int material, bool specular_l
   if (m.occlusionTexture.index >= 0) {
     warn_once(file_ + ": scene has occlusion textures; they are not used (the path tracer finds occlusion itself)");
   }
-  // KHR_materials_specular's textures (the factors are the material's: gltf_materials.cpp),
-  // where the material has a specular layer for them to vary.
+  // KHR_materials_transmission's and KHR_materials_specular's textures (the factors are the
+  // material's: gltf_materials.cpp), where the material is a glTF dielectric for them to vary.
+  if (made.kind != kMaterialDielectric) return t;
+  if (made.transmission > 0.0f) {  // transmissionTexture's R (linear) scales transmissionFactor
+    const std::string transmission = where + ".extensions.KHR_materials_transmission.transmissionTexture";
+    t.transmission = texture_slot(extension_texture(m.extensions, "KHR_materials_transmission", "transmissionTexture",
+                                                    transmission, file_),
+                                  transmission, kSlotTransmission, t, t.transmission_s, t.transmission_t);
+  }
   const std::string specular = where + ".extensions.KHR_materials_specular.";
-  if (!specular_layer) return t;
   t.specular = texture_slot(
       extension_texture(m.extensions, "KHR_materials_specular", "specularTexture", specular + "specularTexture", file_),
       specular + "specularTexture", kSlotSpecular, t, t.specular_s, t.specular_t);

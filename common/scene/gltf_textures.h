@@ -1,6 +1,6 @@
 // glTF textures for the loader (gltf_loader.cpp; issue #19, the contract (README.md)
-// "Materials"): the base colour, emissive, metallic-roughness and KHR_materials_specular
-// textures of the materials a scene uses, with their samplers and KHR_texture_transform, and their images decoded by
+// "Materials"): the base colour, emissive, metallic-roughness, KHR_materials_specular and
+// KHR_materials_transmission textures of the materials a scene uses, with their samplers and KHR_texture_transform, and their images decoded by
 // OpenImageIO (PNG or JPEG, from a bufferView, a data: URI or a file in the scene's
 // folder) into the 8-bit RGBA texels of Scene::texels. tinygltf decodes nothing: its image
 // loader only keeps the bytes (keep_image_bytes).
@@ -59,9 +59,11 @@ class TextureBuilder {
   // once decode_into() has run), its factors, uv transforms and texture coordinate sets
   // (TEXCOORD_0 or TEXCOORD_1); names once what stays unmodelled (normal and occlusion
   // textures, texCoord 2 and above, which are read through TEXCOORD_0).
-  // specular_layer: the material is a glTF dielectric (kMaterialDielectric), whose layer
-  // KHR_materials_specular's textures vary; other materials leave them unread.
-  MaterialTextures material_textures(int material, bool specular_layer);
+  // `made`: the material as convert_material made it. A glTF dielectric (kMaterialDielectric)
+  // has the layer that KHR_materials_specular's textures vary, and where its transmission is
+  // above 0 KHR_materials_transmission's transmissionTexture scales it; other materials
+  // leave them unread.
+  MaterialTextures material_textures(int material, const Material& made);
 
   // Whether some material noted a texture.
   bool empty() const { return table_.empty(); }

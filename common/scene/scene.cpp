@@ -111,7 +111,9 @@ Material make_gltf_pbr_material(const GltfPbr& p) {
   // Transmission between 0 and 1 (docs/gltf_material.md, "Partial transmission"): the glTF
   // dielectric with its transmission, whose glass part choose_gltf_lobe picks with
   // probability (1 - metallic) T; a metal ignores it (metallic 1: the conductor alone).
-  bool partial = p.transmission > 0.0f && p.transmission < 1.0f;
+  // A transmissionTexture makes a factor of 1 partial too (its texels below 1), except on a
+  // pure metal, where transmission 1 wins as without the texture.
+  bool partial = p.transmission > 0.0f && (p.transmission < 1.0f || (p.textured_transmission && !pure_metal));
   if (partial && pure_metal) {
     return make_gltf_material(p.base, p.metallic, p.roughness, 0.0f, p.ior, p.emission, p.double_sided);
   }
@@ -173,8 +175,11 @@ MaterialTextures no_material_textures() {
   const glm::vec3 s(1.0f, 0.0f, 0.0f), t(0.0f, 1.0f, 0.0f);  // the identity transform
   MaterialTextures m{};  // every other field 0: no transform offsets, opaque, TEXCOORD_0
   m.base_color_s = m.emissive_s = m.metallic_roughness_s = m.specular_s = m.specular_color_s = m.normal_s = s;
+  m.transmission_s = s;
   m.base_color_t = m.emissive_t = m.metallic_roughness_t = m.specular_t = m.specular_color_t = m.normal_t = t;
+  m.transmission_t = t;
   m.base_color = m.emissive = m.metallic_roughness = m.specular = m.specular_color = m.normal = kNoTexture;
+  m.transmission = kNoTexture;
   m.metallic_factor = m.roughness_factor = m.base_alpha = m.normal_scale = 1.0f;
   m.specular_color_factor = glm::vec3(1.0f);
   m.enabled = 1u;

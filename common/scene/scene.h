@@ -121,8 +121,10 @@ struct GltfPbr {
   glm::vec3 emission{0.0f};                  // emissiveFactor x emissive strength
   bool double_sided = false;                 // doubleSided
   bool textured_metallic_roughness = false;  // a metallic-roughness texture varies the two
+  bool textured_transmission = false;        // a transmissionTexture scales the transmission
 };
-// Transmission 1 wins (glass, as make_gltf_material). A pure metal (metallic 1, not
+// Transmission 1 wins (glass, as make_gltf_material), unless a transmissionTexture varies
+// it on a material that is not a pure metal (then it is kMaterialDielectric). A pure metal (metallic 1, not
 // varied by a texture) is make_metal's conductor, whatever a transmission below 1; a
 // material without a specular layer (specular 0) and without transmission
 // make_gltf_material's; every other one is kMaterialDielectric, whose `transmission`

@@ -4,6 +4,7 @@
 // perspective, shows the sky times the mixture's reflectance at each pixel's angle:
 // (1 - metallic) ((1 - T) x the glTF dielectric's albedo + T x the glass's Fresnel reflection)
 // + metallic x the conductor's. Each stage samples the part chosen at the hit its own way.
+// A transmissionTexture scales T per point (its R, linear): each half of a plane shows its own T.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -13,9 +14,11 @@
 #include "common/scene/scene_loading.h"
 #include "tests/support/analytic_suite.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/gltf_textured.h"
 #include "tests/support/gltf_writer.h"
 #include "tests/support/image_checks.h"
 #include "tests/support/test_render.h"
+#include "tests/support/texels.h"
 #include "tests/support/texture_scenes.h"
 #include "tests/support/transmission_mix.h"
 
@@ -47,9 +50,33 @@ Scene transmissive_plane(const GltfBrdf& b, double t, const std::string& name) {
   return load_gltf(g.write(pt_test::scratch_dir("pt_transmission").string() + "/" + name + ".gltf"));
 }
 
-// Each pixel the mean over it of `value` at the cosine its direction meets the plane
-// (3-point Gauss-Legendre on 4 x 4 cells, as tests/stages/test_gltf_material_images.cpp).
-ExpectedImage plane_image(const Scene& scene, const std::function<glm::dvec3(double)>& value) {
+// The same plane with transmissionFactor `factor` and a transmissionTexture of 2 x 1 texels
+// (NEAREST, clamped) over u = (x + 100) / 200: `left` for x < 0, `right` for x > 0. The
+// camera sees x < 0 in the left half of the image, which kSize even splits between pixels.
+Scene textured_plane(const GltfBrdf& b, double factor, uint left, uint right, const std::string& name) {
+  GltfWriter g;
+  int tex = image_texture(g, 2, 1, {left, right});
+  int m = g.material({{"pbrMetallicRoughness",
+                       {{"baseColorFactor", {b.base.x, b.base.y, b.base.z, 1.0}}, {"metallicFactor", b.metallic},
+                        {"roughnessFactor", b.roughness}}},
+                      {"extensions",
+                       {{"KHR_materials_transmission",
+                         {{"transmissionFactor", factor}, {"transmissionTexture", {{"index", tex}}}}}}}});
+  g.uses("KHR_materials_transmission");
+  int black = g.diffuse(glm::vec3(0.0f));
+  g.node({{"mesh", textured_quad(g, {{-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, {-100, 0, -100}},
+                                 {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}, m)}});
+  g.node({{"mesh", g.quad({-100, -1, 100}, {100, -1, 100}, {100, -1, -100}, {-100, -1, -100}, black)}});
+  double half = -25.0 * M_PI / 180.0;
+  g.node({{"camera", g.perspective(60.0 * M_PI / 180.0)},
+          {"translation", {0, 1, 0}},
+          {"rotation", {std::sin(half), 0, 0, std::cos(half)}}});
+  return load_gltf(g.write(pt_test::scratch_dir("pt_transmission").string() + "/" + name + ".gltf"));
+}
+
+// Each pixel the mean over it of `value` of the direction of each of its points (3-point
+// Gauss-Legendre on 4 x 4 cells, as tests/stages/test_gltf_material_images.cpp).
+ExpectedImage plane_image_by_direction(const Scene& scene, const std::function<glm::dvec3(glm::dvec3)>& value) {
   const double node[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
   const double weight[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
   Camera cam = make_camera(scene, 1.0f);
@@ -60,11 +87,16 @@ ExpectedImage plane_image(const Scene& scene, const std::function<glm::dvec3(dou
         double sx = x0 + (x1 - x0) * (i / 3 + node[i % 3]) / 4.0, sy = y0 + (y1 - y0) * (j / 3 + node[j % 3]) / 4.0;
         glm::dvec3 dir = glm::normalize(glm::dvec3(cam.forward) + sx * double(cam.extent_x) * glm::dvec3(cam.right) +
                                         sy * double(cam.extent_y) * glm::dvec3(cam.up));
-        sum += value(-dir.y) * (weight[i % 3] * weight[j % 3] / 16.0);
+        sum += value(dir) * (weight[i % 3] * weight[j % 3] / 16.0);
       }
     }
     return sum;
   });
+}
+
+// The same of `value` at the cosine each direction meets the plane.
+ExpectedImage plane_image(const Scene& scene, const std::function<glm::dvec3(double)>& value) {
+  return plane_image_by_direction(scene, [&](glm::dvec3 dir) { return value(-dir.y); });
 }
 
 void check_plane(const GltfBrdf& b, double t, const std::string& name, std::uint32_t seed) {
@@ -98,4 +130,26 @@ TEST_CASE("transmission: a rough tinted plane of transmission 0.2, metallic 0.3,
   GltfBrdf b;
   b.base = {0.8, 0.6, 0.4}, b.metallic = 0.3, b.roughness = 0.5;
   check_plane(b, 0.2, "rough_fifth", test_seed(47300));
+}
+
+TEST_CASE("transmissionTexture: a rough plane of transmissionFactor 1 whose texture's R is 128/255 on its left half "
+          "and 0 on its right shows the mixture of transmission 128/255 there and the plain dielectric here, in "
+          "stages 2 to 5",
+          "[stage2][stage3][stage4][stage5][transmission][transmission_texture][statistical]") {
+  GltfBrdf b;
+  b.base = {0.9, 0.7, 0.5}, b.metallic = 0.3, b.roughness = 0.5;
+  // G, B and A differ from R: only R (linear, not sRGB-decoded) scales the factor.
+  Scene scene = textured_plane(b, 1.0, pt_test::rgba(128, 0, 255, 255), pt_test::rgba(0, 255, 255, 255), "textured");
+  REQUIRE(scene.materials.at(0).kind == kMaterialDielectric);
+  REQUIRE(scene.material_textures.at(0).transmission != kNoTexture);
+  MixtureTable left(b, 128.0 / 255.0, 129), right(b, 0.0, 129);
+  ExpectedImage want =
+      plane_image_by_direction(scene, [&](glm::dvec3 dir) { return kSky * (dir.x < 0.0 ? left : right).at(-dir.y); });
+  std::uint32_t seed = test_seed(47400);
+  for (const StageKernels& kernels : path_tracing_stages()) {
+    INFO(kernels.name);
+    RenderSettings s = settings(kSize, kSize, 64, seed += 100);
+    s.sky = glm::vec3(kSky);
+    check_scene(kernels, scene, want, s, 1e-3);
+  }
 }

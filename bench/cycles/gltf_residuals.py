@@ -1,0 +1,202 @@
+#!/usr/bin/python3
+"""What explains each residual of the Blender comparison (issue 46; bench/cycles/compare_gltf.py):
+one change at a time, to Cycles, to stage5's file or to both. Not part of the article: bench machinery.
+
+Each experiment renders a file as compare_gltf.py does (seeds 1 and 2, half the samples each; the
+same mean ratio, worst of the 4x4 regions and their noise) with one thing changed: a Principled
+BSDF input or its distribution, the image textures' interpolation, the spots' blend, a default
+material for material-less meshes (bench/cycles/render_cycles_imported.py's diagnosis options), or
+the glTF file that stage5 reads (a sampler, an extension, a spot cone). Its row sits beside the
+file's baseline (compare_gltf.py's row in docs/results/gltf_real/gltf_real.csv, at 4 times the
+samples by default), so the change's effect is the difference of the two.
+
+  /usr/bin/python3 bench/cycles/gltf_residuals.py --bin-dir build/bin --out-dir out/gltf_residuals \\
+      --publish docs/results/gltf_real [--only 14_transmission]
+Writes OUT/residuals.csv (one row per file and experiment) and OUT/residual_splits.csv (splits());
+--publish copies them there.
+"""
+import argparse
+import csv
+import json
+import os
+import shutil
+import sys
+
+from compare_gltf import compare, log, region_stats, render_pair, repo_path
+from gltf_prepare import lambert_copy, prepare
+
+
+def edited(path, suffix, edit):
+    """A copy of the glTF file at `path` changed by edit(doc), next to it (its buffers and images)."""
+    with open(path) as f:
+        doc = json.load(f)
+    edit(doc)
+    out = path[:-len(".gltf")] + "_" + suffix + ".gltf"
+    with open(out, "w") as f:
+        json.dump(doc, f)
+    return out
+
+
+def nearest_samplers(doc):
+    doc["samplers"] = doc.get("samplers", []) + [{"magFilter": 9728, "minFilter": 9728}]
+    for t in doc.get("textures", []):
+        t["sampler"] = len(doc["samplers"]) - 1
+
+
+def nearest_no_normal_map(doc):
+    nearest_samplers(doc)
+    for m in doc.get("materials", []):
+        m.pop("normalTexture", None)
+
+
+def no_transmission(doc):
+    for m in doc.get("materials", []):
+        m.get("extensions", {}).pop("KHR_materials_transmission", None)
+
+
+def hard_spots(doc):
+    for light in doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", []):
+        if light.get("type") == "spot":
+            light.setdefault("spot", {})["innerConeAngle"] = light["spot"].get("outerConeAngle", 0.7853981633974483)
+
+
+# (file, experiment, what it changes, Cycles options, stage5's file: None = as is, "lambert" = the
+# Lambert control, else an edit of the file, and the control on top when the name ends in +lambert).
+# The baselines (no change) are compare_gltf.py's rows in docs/results/gltf_real/gltf_real.csv.
+EXPERIMENTS = [  # in the order run, the most telling first
+    ("01_principled_material", "control_cycles_closest", "Lambert control, Cycles' textures Closest (stage5 LINEAR)",
+     ["--lambert", "--interpolation", "Closest"], "lambert"),
+    ("14_transmission", "no_transmission", "transmission 0 in both (the plastic alone)",
+     ["--set-input", "Transmission=0"], ("notransmission", no_transmission)),
+    ("05_metallic_sphere_light", "control_hard_spots", "Lambert control, hard cones in both (blend 0, inner = outer)",
+     ["--lambert", "--spot-blend", "0"], ("hardspots+lambert", hard_spots)),
+    ("22_vertex_color", "cycles_default_material", "Cycles: glTF's default material x COLOR_0 on bare meshes",
+     ["--bare-default-material"], None),
+    ("14_transmission", "cycles_multi_ggx", "Cycles' Principled Multiscatter GGX", ["--distribution", "MULTI_GGX"],
+     None),
+    ("01_principled_material", "cycles_closest", "Cycles' textures Closest (stage5 LINEAR)",
+     ["--interpolation", "Closest"], None),
+    ("spheres", "cycles_multi_ggx", "Cycles' Principled Multiscatter GGX", ["--distribution", "MULTI_GGX"], None),
+    ("05_metallic_sphere_light", "cycles_multi_ggx", "Cycles' Principled Multiscatter GGX",
+     ["--distribution", "MULTI_GGX"], None),
+    ("01_principled_material", "control_both_nearest", "Lambert control, both NEAREST",
+     ["--lambert", "--interpolation", "Closest"], ("nearest+lambert", nearest_samplers)),
+    ("01_principled_material", "control_both_nearest_no_normal_map",
+     "Lambert control, both NEAREST, no normal map in either",
+     ["--lambert", "--interpolation", "Closest", "--no-normal-map"], ("nonormal+lambert", nearest_no_normal_map)),
+    ("04_common_materials", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
+    ("04_common_materials", "control", "the Lambert control", ["--lambert"], "lambert"),
+    ("spheres", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
+    ("14_transmission", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
+    ("14_transmission", "control", "the Lambert control", ["--lambert"], "lambert"),
+    ("04_lights", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
+    ("04_lights", "control", "the Lambert control", ["--lambert"], "lambert"),
+]
+
+COLUMNS = ["id", "experiment", "what", "size", "spp", "mean_cycles", "mean_stage5", "mean_ratio", "mean_noise",
+           "worst_region", "worst_region_index", "worst_region_noise", "regions", "cycles_regions"]
+
+
+def splits(rows, baseline_csv):
+    """Where a file has both a cycles_specular0 and a control row: for its image and for the worst
+    region of its baseline (compare_gltf.py's row), the three factors whose product is the
+    baseline's ratio: Principled's diffuse over Lambert (Cycles, Specular 0 / Cycles' control),
+    Principled's specular layer (Cycles / Cycles with Specular 0, from the ratios of stage5 as is to
+    each) and stage5's 1 - F weight with its metals (stage5 / stage5's control). The control takes
+    transmission out too, so a transmissive file's factors hold its transmission as well."""
+    with open(baseline_csv) as f:
+        baselines = {r["id"]: r for r in csv.DictReader(f)}
+    out = []
+    for file_id in sorted({r["id"] for r in rows}):
+        mine = {r["experiment"]: r for r in rows if r["id"] == file_id}
+        if "cycles_specular0" not in mine or "control" not in mine or file_id not in baselines:
+            continue
+        s0, c, b = mine["cycles_specular0"], mine["control"], baselines[file_id]
+        worst = int(b["worst_region_index"])
+        for region in ("image", worst):
+            if region == "image":
+                cs0, cc, rs0, rc, rb = (float(s0["mean_cycles"]), float(c["mean_cycles"]), float(s0["mean_ratio"]),
+                                        float(c["mean_ratio"]), float(b["mean_ratio"]))
+            else:
+                cs0, cc = (float(x[worst]) for x in (s0["cycles_regions"].split(), c["cycles_regions"].split()))
+                rs0, rc, rb = (float(x[worst]) for x in (s0["regions"].split(), c["regions"].split(),
+                                                         b["regions"].split()))
+            out.append({"id": file_id, "region": region, "baseline_ratio": f"{rb:.4f}",
+                        "principled_diffuse": f"{cs0 / cc:.4f}", "principled_specular": f"{rs0 / rb:.4f}",
+                        "stage5_fresnel": f"{rs0 * cs0 / (rc * cc):.4f}"})
+    return out
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--bin-dir", default="build/bin")
+    p.add_argument("--out-dir", default="out/gltf_residuals")
+    p.add_argument("--publish", default=None)
+    p.add_argument("--files", default="bench/gltf_real/files.json")
+    p.add_argument("--only", default="", help="comma-separated file ids")
+    p.add_argument("--experiments", default="", help="comma-separated experiment names (default: all)")
+    p.add_argument("--spp-scale", type=float, default=0.25)
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--blender", default="blender")
+    args = p.parse_args()
+    if shutil.which(args.blender) is None:
+        print(f"gltf_residuals.py: skipped: '{args.blender}' not found; the Blender comparison is bench-only")
+        return 0
+    stage5 = os.path.join(repo_path(args.bin_dir), "stage5_mis")
+    with open(repo_path(args.files)) as f:
+        manifest = {e["id"]: e for e in json.load(f)["files"]}
+    only = [s for s in args.only.split(",") if s]
+    out_dir = repo_path(args.out_dir)
+    os.makedirs(out_dir, exist_ok=True)
+    prepared, rows = {}, []
+    csv_path = os.path.join(out_dir, "residuals.csv")
+    if os.path.exists(csv_path):  # an earlier run's rows stay unless an experiment runs again
+        with open(csv_path) as f:
+            rows = list(csv.DictReader(f))
+    for file_id, name, what, flags, stage5_file in EXPERIMENTS:
+        if (only and file_id not in only) or (args.experiments and name not in args.experiments.split(",")):
+            continue
+        entry = manifest[file_id]
+        if file_id not in prepared:
+            prepared[file_id] = prepare(entry, os.path.join(out_dir, "files"), args.blender, log)
+        scene = prepared[file_id]
+        if stage5_file == "lambert":
+            st5_scene = lambert_copy(scene)
+        elif stage5_file is None:
+            st5_scene = scene
+        else:
+            suffix, edit = stage5_file
+            st5_scene = edited(scene, suffix.split("+")[0], edit)
+            if suffix.endswith("+lambert"):
+                st5_scene = lambert_copy(st5_scene)
+        half = max(1, int(round(entry["spp"] * args.spp_scale / 2)))
+        cyc, st5, _ = render_pair(args, entry, scene, st5_scene, half, "_" + name, stage5, flags)
+        row = compare(entry, cyc, st5)
+        c_regions = [m for m, _ in region_stats(*cyc)[:-1]]
+        row.update({"experiment": name, "what": what, "size": f"{entry['width']}x{entry['height']}",
+                    "spp": 2 * half, "cycles_regions": " ".join(f"{m:.5g}" for m in c_regions)})
+        rows = [r for r in rows if (r["id"], r["experiment"]) != (file_id, name)] + [row]
+        log(f"{file_id} {name}: mean ratio {row['mean_ratio']:.4f} (±{row['mean_noise']:.4f}), worst region "
+            f"{row['worst_region']:.4f} (±{row['worst_region_noise']:.4f}) [{row['worst_region_index']}]")
+        with open(csv_path, "w", newline="") as f:  # after every experiment: a partial run keeps its rows
+            writer = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
+            writer.writeheader()
+            for r in rows:
+                writer.writerow({k: (f"{v:.5g}" if isinstance(v, float) else v) for k, v in r.items()})
+    split_rows = splits(rows, repo_path("docs/results/gltf_real/gltf_real.csv"))
+    split_path = os.path.join(out_dir, "residual_splits.csv")
+    if split_rows:
+        with open(split_path, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(split_rows[0]))
+            writer.writeheader()
+            writer.writerows(split_rows)
+    if args.publish and rows:
+        os.makedirs(repo_path(args.publish), exist_ok=True)
+        for path in (csv_path, split_path):
+            if os.path.exists(path):
+                shutil.copy(path, repo_path(args.publish))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
