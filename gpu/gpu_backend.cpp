@@ -1,7 +1,8 @@
 // The Vulkan compute backend (see gpu_backend.h): the scene arrays in storage buffers (and
 // the triangles in a uniform buffer too when they fit: gpu/kernel_bindings.glsl, triangle_at),
 // one pass = a few dispatches of 8x8 workgroups over row ranges, each short enough for a
-// desktop GPU's watchdog, timed with timestamp queries, then the output read back.
+// desktop GPU's watchdog (each recorded, timed and waited for by dispatch.h), then the
+// output read back. device_limits.h checks beforehand that the buffers fit the device.
 #include "gpu/gpu_backend.h"
 
 #include <algorithm>
@@ -20,7 +21,8 @@
 #include "common/scene/environment.h"
 #include "common/scene/scene.h"
 #include "gpu/compute_pipeline.h"
-#include "gpu/fault.h"
+#include "gpu/device_limits.h"
+#include "gpu/dispatch.h"
 
 namespace pt::gpu {
 
@@ -28,39 +30,17 @@ namespace {
 
 constexpr uint32_t kGroupSize = 8;                      // kernel_main.glsl's local size
 constexpr uint64_t kPixelSamplesPerDispatch = 1u << 22;  // about 4 million camera samples
-constexpr uint64_t kFenceTimeoutNs = 120'000'000'000;    // a dispatch that takes 2 minutes is hung
-
-std::string megabytes(VkDeviceSize bytes) {
-  return memory_size_words(bytes);  // "134 MB", "4.3 GB"
-}
 
 class GpuBackend : public Backend, public DeviceMemoryLimits {
  public:
   GpuBackend(const StageKernels& kernels, const std::string& device)
-      : context_(device), kernels_(kernels) {
-    VkDevice dev = context_.device();
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = context_.command_pool();
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    check(vkAllocateCommandBuffers(dev, &alloc, &cmd_), "allocating a command buffer");
-    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    check(vkCreateFence(dev, &fence_info, nullptr, &fence_), "creating a fence");
-    if (context_.has_timestamps()) {
-      VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-      q.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      q.queryCount = 2;
-      check(vkCreateQueryPool(dev, &q, nullptr, &queries_), "creating a timestamp query pool");
-    }
+      : context_(device), kernels_(kernels), dispatcher_(context_) {
     params_ = Buffer(context_, sizeof(FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     counters_ = Buffer(context_, sizeof(PassResult::counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   }
 
   ~GpuBackend() override {
-    VkDevice dev = context_.device();
-    vkDeviceWaitIdle(dev);
-    if (queries_) vkDestroyQueryPool(dev, queries_, nullptr);
-    if (fence_) vkDestroyFence(dev, fence_, nullptr);
+    vkDeviceWaitIdle(context_.device());
   }
 
   std::string kind() const override { return "gpu"; }
@@ -117,46 +97,14 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
   // set_scene() and run_pass() will make against the device's limits, as they check them,
   // and all of them together against its memory.
   void check_device_memory(const Scene& scene, uint features, std::uint64_t pixels, const Bvh* bvh) const override {
-    VkDeviceSize total = 0;
-    auto need = [&](std::uint64_t count, std::uint64_t size, const char* what, bool texels = false) {
-      VkDeviceSize bytes = 0;
-      if (__builtin_mul_overflow(count, size, &bytes)) bytes = ~VkDeviceSize(0);
-      check_range(bytes, what);
-      if (texels) check_texels(bytes, what);
-      total = std::min(total + bytes, ~VkDeviceSize(0) / 2);
-    };
-    const bool textured = (features & kFeatureTextures) && uses_textures(scene);
-    need(scene.triangles.size(), sizeof(Triangle), "the scene's triangles need");
-    need(scene.spheres.size(), sizeof(Sphere), "the scene needs");
-    need(scene.materials.size(), sizeof(Material), "the scene needs");
-    need(scene.point_lights.size(), sizeof(PointLight), "the scene needs");
-    need(scene.lights.size(), sizeof(Light), "the scene needs");
-    need(scene.light_guide.size(), sizeof(uint), "the scene needs");
-    if (bvh && !bvh->nodes.empty()) {
-      need(bvh->nodes.size(), sizeof(BvhNode), "the BVH's nodes need", true);
-      need(bvh->indices.size(), sizeof(uint), "the BVH's triangle list needs");
-    }
-    if (textured) {
-      need(scene.triangle_attributes.size(), sizeof(TriangleAttributes), "the vertex attributes need");
-      need(scene.texels.size(), sizeof(uint), "the textures need");
-    }
-    if ((features & kFeatureShadingNormals) && uses_shading_normals(scene))
-      need(scene.triangle_shading.size(), sizeof(TriangleShading), "the shading normals need");
-    if ((features & kFeatureEnvironment) && scene.environment) {
-      need(scene.environment->radiance.size(), sizeof(float), "the environment map needs");
-      need(scene.environment->table.size(), sizeof(float), "the environment map's sampling tables need");
-    }
-    need(pixels, sizeof(glm::vec4), "the image needs");
-    if (total > context_.heap_size()) {
-      throw Error(kExitNoDevice, "the render needs " + megabytes(total) + " of buffers in all but device '" +
-                                     context_.device_name() + "' has " + megabytes(context_.heap_size()) +
-                                     "; render a smaller image or scene, or use --backend cpu");
-    }
+    check_render_memory(context_, scene, features, pixels, bvh);
   }
 
   PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) override {
     // A lost device is never used again: its results could not be trusted.
-    if (lost_) throw Error(kExitNoDevice, "Vulkan device '" + context_.device_name() + "' was lost earlier and is not retried");
+    if (dispatcher_.lost()) {
+      throw Error(kExitNoDevice, "Vulkan device '" + context_.device_name() + "' was lost earlier and is not retried");
+    }
     passes_++;
     ensure_output(VkDeviceSize(out.size_bytes()));
     if (!pipeline_) throw std::logic_error("run_pass before set_scene");
@@ -224,7 +172,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
       FrameParams chunk = params;
       chunk.first_row = row0;
       params_.write(&chunk, sizeof chunk);
-      result.kernel_seconds += dispatch(groups_x, (n + kGroupSize - 1) / kGroupSize);
+      result.kernel_seconds += dispatcher_.dispatch(*pipeline_, groups_x, (n + kGroupSize - 1) / kGroupSize, passes_);
     }
     output_.read(out.data(), out.size_bytes());
     counters_.read(result.counters, sizeof result.counters);
@@ -238,98 +186,24 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
   // Storage buffers never have size 0: an empty array still gets a small buffer.
   void upload(Buffer& buffer, const void* data, std::size_t bytes, const char* what = "the scene needs",
               VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
-    check_range(bytes, what);
-    if (usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) check_texels(bytes, what);
+    check_range(context_, bytes, what);
+    if (usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) check_texels(context_, bytes, what);
     buffer = Buffer(context_, std::max<std::size_t>((bytes + 15) / 16 * 16, 64), usage);
     if (bytes) buffer.write(data, bytes);
   }
 
   void ensure_output(VkDeviceSize bytes) {
     if (output_.size() == bytes) return;
-    check_range(bytes, "the image needs");
+    check_range(context_, bytes, "the image needs");
     output_ = Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  }
-
-  // A storage buffer larger than the device's limit cannot be bound, nor one larger than
-  // its memory allocated: say so before trying.
-  void check_range(VkDeviceSize bytes, const char* what) const {
-    VkDeviceSize limit = context_.properties().limits.maxStorageBufferRange;
-    if (bytes > limit) {
-      throw Error(kExitNoDevice, std::string(what) + " a " + megabytes(bytes) + " (" + std::to_string(bytes) +
-                                     " bytes) buffer but device '" + context_.device_name() + "' allows " +
-                                     megabytes(limit) + " (" + std::to_string(limit) +
-                                     " bytes); render a smaller image or scene, or use --backend cpu");
-    }
-    if (bytes > context_.heap_size()) {
-      throw Error(kExitNoDevice, std::string(what) + " " + megabytes(bytes) + " of memory but device '" +
-                                     context_.device_name() + "' has " + megabytes(context_.heap_size()) +
-                                     "; render a smaller image or scene, or use --backend cpu");
-    }
-  }
-
-  // The kernel reads the BVH's nodes as uvec4 texels (binding 9): a device allows at least
-  // 65,536 of them per buffer (lavapipe 2^27, as desktop GPUs do).
-  void check_texels(VkDeviceSize bytes, const char* what) const {
-    const VkDeviceSize texels = (bytes + 15) / 16, limit = context_.properties().limits.maxTexelBufferElements;
-    if (texels > limit) {
-      throw Error(kExitNoDevice, std::string(what) + " " + std::to_string(texels) + " texels of 16 bytes but device '" +
-                                     context_.device_name() + "' reads at most " + std::to_string(limit) +
-                                     " from one texel buffer; render a smaller scene, or use --backend cpu");
-    }
-  }
-
-  // Records and submits one dispatch, waits for it; returns its kernel time.
-  double dispatch(uint32_t groups_x, uint32_t groups_y) {
-    VkDevice dev = context_.device();
-    check(vkResetCommandBuffer(cmd_, 0), "resetting a command buffer");
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(cmd_, &begin), "recording commands");
-    if (queries_) {
-      vkCmdResetQueryPool(cmd_, queries_, 0, 2);
-      vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-    }
-    pipeline_->record_dispatch(cmd_, groups_x, groups_y);
-    if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
-    // Make the shader's writes visible to the host's read of the output buffer.
-    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
-    vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                         nullptr, 0, nullptr);
-    check(vkEndCommandBuffer(cmd_), "recording commands");
-
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd_;
-    check(vkResetFences(dev, 1, &fence_), "resetting a fence");
-    VkResult submitted = vkQueueSubmit(context_.queue(), 1, &submit, fence_);
-    VkResult waited = submitted == VK_SUCCESS ? vkWaitForFences(dev, 1, &fence_, VK_TRUE, kFenceTimeoutNs) : submitted;
-    if (fault().device_lost_pass == passes_) waited = VK_ERROR_DEVICE_LOST;  // PT_FAULT=device_lost:pass=N
-    if (waited == VK_ERROR_DEVICE_LOST) {
-      lost_ = true;
-      throw Error(kExitNoDevice, "Vulkan device '" + context_.device_name() + "' was lost during pass " +
-                                     std::to_string(passes_) + " (VK_ERROR_DEVICE_LOST) and is not retried");
-    }
-    if (waited == VK_TIMEOUT) {
-      throw Error(kExitNoDevice, "the Vulkan device did not finish a pass within 2 minutes; use --backend cpu");
-    }
-    check(waited, "running the kernel");
-    if (!queries_) return 0.0;
-    uint64_t stamps[2];
-    check(vkGetQueryPoolResults(dev, queries_, 0, 2, sizeof stamps, stamps, sizeof(uint64_t),
-                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-          "reading timestamps");
-    return double(stamps[1] - stamps[0]) * double(context_.properties().limits.timestampPeriod) * 1e-9;
   }
 
   VulkanContext context_;
   StageKernels kernels_;
   std::map<std::pair<uint, uint32_t>, std::unique_ptr<ComputePipeline>> pipelines_;  // by features, kUniformTriangles
   ComputePipeline* pipeline_ = nullptr;                          // the current scene's
-  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-  VkFence fence_ = VK_NULL_HANDLE;
-  VkQueryPool queries_ = VK_NULL_HANDLE;
+  Dispatcher dispatcher_;      // records, submits and times each dispatch (dispatch.h)
   std::uint64_t passes_ = 0;  // passes begun on this device (PT_FAULT counts them)
-  bool lost_ = false;         // VK_ERROR_DEVICE_LOST seen: the device is not used again
   bool one_sample_ = false;   // the driver's loop budget ran out once: one sample per invocation
   Buffer triangles_, spheres_, materials_, point_lights_, params_, output_, counters_, lights_, uniform_triangles_;
   Buffer bvh_nodes_, bvh_indices_;  // bindings 9 and 10
