@@ -1,0 +1,183 @@
+"""The fast part of the grader's test (tools/test_grade_lab.py --fast, ctest entry
+grade_lab_fast): bad usage, a machine without bubblewrap, the source check on the fixtures
+and on each attack, the sandbox's walls, the reports, the lab pages' hint tables, the CSV's
+quoting and what a submission rebuilds; no lab build. Not part of the article: tooling for
+teachers."""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+from grade_lab_fixtures import HERE, REPO, TOOL, expect, lab2_fixtures, reference, write
+
+def bad_usage(tmp):
+    subs = os.path.join(tmp, "empty")
+    os.makedirs(subs)
+    for args, what in (([], "no arguments"), (["2"], "no submissions folder"), (["7", subs], "lab 7"),
+                       (["2", os.path.join(tmp, "missing")], "a missing folder"), (["2", subs], "an empty folder")):
+        r = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
+        expect(r.returncode == 2 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
+               and r.stderr.startswith("grade_lab: "), f"bad usage ({what}) exits 2 with one line", r.stderr)
+
+
+def no_sandbox_refused(tmp):
+    """With no bwrap on PATH the grader says so in one line, exits 1 and grades nothing."""
+    bin_dir, subs = os.path.join(tmp, "bin_without_bwrap"), os.path.join(tmp, "one")
+    os.makedirs(bin_dir)
+    os.makedirs(subs)
+    for tool in ("cmake", "ctest", "prlimit", "setpriv"):
+        if shutil.which(tool):
+            os.symlink(shutil.which(tool), os.path.join(bin_dir, tool))
+    write(subs, {"alice.glsl": reference("common/kernel/uniform_hemisphere.glsl")})
+    r = subprocess.run([sys.executable, TOOL, "2", subs, "--work", os.path.join(tmp, "work_unused")],
+                       capture_output=True, text=True, env={**os.environ, "PATH": bin_dir})
+    expect(r.returncode == 1 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1
+           and "bubblewrap" in r.stderr and "--unsealed" in r.stderr,
+           "without bubblewrap: one line that says so and names --unsealed, exit 1, nothing graded", r.stderr)
+
+
+def source_checks(tmp):
+    """The honest fixtures pass the source check; each attack is refused, with its reason."""
+    from grading.source_check import check_source
+    from make_lab_handout import REFERENCE_FILES
+    refs = sorted({r for rels in REFERENCE_FILES.values() for r in rels})
+    subs = os.path.join(tmp, "fixtures")
+    os.makedirs(subs)
+    lab2_fixtures(subs)
+    found = {}
+    for entry in sorted(os.listdir(subs)):
+        path = os.path.join(subs, entry, "lab2.glsl") if os.path.isdir(os.path.join(subs, entry)) else os.path.join(subs, entry)
+        if os.path.isfile(path):
+            found[entry.replace(".glsl", "")] = check_source(open(path, "rb").read(), "labs/lab2.glsl", refs, REPO)
+    refused = {n: why for n, why in found.items() if why}
+    expect(sorted(refused) == ["r_includes_reference", "r_prints_1gb", "r_rewrites_report", "r_writes_outside"],
+           "the source check refuses the four attacks and nothing else", repr(refused))
+    expect(refused["r_includes_reference"] == "labs/lab2.glsl:1: includes the reference solution "
+                                              "common/kernel/uniform_hemisphere.glsl", "it names the reference included")
+    expect(all("'#ifdef __cplusplus'" in refused[n] for n in ("r_prints_1gb", "r_rewrites_report", "r_writes_outside")),
+           "it names the C++ hidden from GLSL", repr(refused))
+    for code, what in ((b'#ifndef GL_SPIRV\n#define GL_SPIRV\nint x;\n#endif\n', "a guard on a name GLSL defines"),
+                       (b"#define CHECK(x) (void)0\n", "a #define of a test macro"),
+                       (b'%:include "common/kernel/box_slab.glsl"\n', "a digraph #include"),
+                       (b'#  include </etc/passwd>\n', "an #include <...>"),
+                       (b'#include "../../tests/common/kernel/test_light_sampling.cpp"\n', "an #include of a test")):
+        expect(check_source(code, "labs/lab2.glsl", refs, REPO) is not None, f"the source check refuses {what}")
+
+
+def sandbox_checks(tmp):
+    """The sandbox's walls, tried with small commands."""
+    from grading.sandbox import Limits, MiB, Sandbox, memory_limit, probe
+    why = probe()
+    if why:
+        print(f"SKIPPED: the sandbox cannot run here: {why}")
+        return False
+    run = os.path.join(tmp, "run")
+    os.makedirs(run)
+    box = Sandbox(True, REPO, {}, {})
+    box.owner_of_writable(run)
+    limits = Limits(20, memory_limit(), 64, 4 * MiB, 2 * MiB, 2 * MiB)
+    outside = os.path.join(tmp, "outside.txt")
+    script = (f"echo in > {run}/inside.txt; echo out > {outside}; echo repo > {REPO}/planted_by_sandbox_test; "
+              f"ls {REPO} >/dev/null 2>&1 && echo SEES_REPO; echo tmp > /tmp/t && echo TMP_OK; "
+              f"python3 -c \"import socket; socket.create_connection(('1.1.1.1', 80), timeout=3)\" 2>/dev/null "
+              f"&& echo NET_OK; echo '<fake/>' > {run}/report.xml; echo real > {{report}}; exit 0")
+    r = box.run(["bash", "-c", script], run, [run], [], {}, limits, 60, report=True)
+    out = r.stdout.decode()
+    expect(os.path.isfile(os.path.join(run, "inside.txt")), "the sandbox writes its own folder")
+    expect(not os.path.exists(outside) and not os.path.exists(os.path.join(REPO, "planted_by_sandbox_test")),
+           "the sandbox writes nothing outside its folder", out)
+    expect("SEES_REPO" not in out and "TMP_OK" in out and "NET_OK" not in out,
+           "the sandbox sees no project tree and no network, and has a /tmp of its own", out)
+    expect(r.report == b"real\n", "the report comes over the grader's pipe, whatever files the sandbox writes",
+           repr(r.report))
+    r = box.run(["bash", "-c", "head -c 1073741824 /dev/zero"], run, [run], [], {}, limits, 60)
+    expect(r.over_cap == "stdout" and len(r.stdout) == limits.stdout_cap and r.seconds < 30,
+           "1 GB on stdout is cut off at the cap and the command killed", f"{r.over_cap} {len(r.stdout)} {r.seconds}")
+    r = box.run(["bash", "-c", "head -c 10000000 /dev/zero > big"], run, [run], [], {}, limits, 60)
+    expect(r.rc != 0 and os.path.getsize(os.path.join(run, "big")) <= limits.file_size,
+           "a file over the size limit is cut off", f"rc {r.rc}")
+    r = box.run(["bash", "-c", "while :; do :; done"], run, [run], [], {}, limits, 2, on_timeout=lambda pid: "spin()")
+    expect(r.timed_out and r.running_function == "spin()" and r.seconds < 10,
+           "an endless loop is killed at the deadline, after on_timeout said where it was")
+    return True
+
+
+def report_checks():
+    """A report with text besides Catch2's, or a test the lab does not run, is not taken."""
+    from grading.lab_tests import read_report
+    doc = ('<?xml version="1.0" encoding="UTF-8"?>\n<Catch name="pt_tests">\n  <Group name="pt_tests">\n'
+           '    <TestCase name="a; b, c" tags="[x]">\n      <OverallResult success="true"/>\n    </TestCase>\n'
+           '    <TestCase name="d" tags="[x]">\n      <Expression success="false" type="CHECK">\n'
+           '        <Original>mean == 2</Original>\n        <Expanded>1.013 == 2</Expanded>\n      </Expression>\n'
+           '      <OverallResult success="false"/>\n    </TestCase>\n  </Group>\n</Catch>\n')
+    rep = read_report(doc.encode(), ["a; b, c", "d"])
+    expect(rep.whole and rep.problem is None and rep.cases[0][:2] == ("a; b, c", True)
+           and rep.cases[1][2] == "its check mean == 2 failed with 1.013 == 2", "a whole report is read", repr(rep.cases))
+    expect(read_report((doc + doc).encode(), ["a; b, c", "d"]).problem is not None, "two reports are refused")
+    expect(read_report(("hello\n" + doc).encode(), ["a; b, c", "d"]).problem is not None, "text before it is refused")
+    expect(read_report(doc.encode(), ["a; b, c"]).problem is not None, "a test the lab does not run is refused")
+    cut = read_report(doc[:doc.index("<OverallResult success=\"false")].encode(), ["a; b, c", "d"])
+    expect(not cut.whole and cut.running == "d" and cut.problem is None, "a report cut short names the running test")
+
+
+def hint_tables(pt_tests):
+    """Every lab page has the table, and each of its rows names a test of the lab's program."""
+    from grading.hints import matches, read_hints
+    names = []
+    if pt_tests:
+        listing = subprocess.run([pt_tests, "--list-test-names-only"], capture_output=True, text=True)
+        names = [n.strip() for n in listing.stdout.splitlines() if n.strip()]
+    for lab in range(1, 7):
+        hints = read_hints(REPO, lab)
+        expect(len(hints) >= 2, f"docs/labs/lab{lab}.md has the table 'If a test fails'")
+        for pattern, suspect in hints:
+            expect(not names or any(matches(pattern, n) for n in names),
+                   f"lab {lab}: the row '{pattern[:60]}' names a test of pt_tests")
+
+
+def csv_quoting(tmp):
+    from grading.reports import write_csv
+    from grading.submission import Grade
+    g = Grade("alice", "/x/alice.glsl")
+    g.verdict, g.detail, g.failed, g.suspect = "FAIL", '"t; u, v": its check a, b failed', ["t; u, v", "w"], "x, y"
+    write_csv(tmp, [g])
+    rows = list(csv.reader(open(os.path.join(tmp, "grades.csv"), encoding="utf-8", newline="")))
+    expect(len(rows) == 2 and rows[1][:4] == ["alice", "FAIL", g.detail, "x, y"] and rows[1][7] == "t; u, v\nw",
+           "grades.csv keeps a field with ',' ';' and quotes whole (Python's csv module)", repr(rows))
+
+
+def rebuilt_outputs(tmp):
+    """A submission rebuilds what #includes the lab file (its depfiles) and what is made from
+    that, not the GPU kernels that name every labs/*.glsl in a glob rule; the file gets the
+    setup's time stamp, so that make does not remake those either."""
+    from grading.depends import dependents, put_lab_file
+    build, lab = os.path.join(tmp, "deps", "build"), os.path.join(tmp, "deps", "src", "labs", "lab2.glsl")
+    os.makedirs(os.path.join(build, "CMakeFiles", "k.dir"))
+    os.makedirs(os.path.dirname(lab))
+    with open(os.path.join(build, "CMakeFiles", "k.dir", "build.make"), "w") as fh:
+        fh.write(f"k_spirv.h: {lab}\n\nCMakeFiles/k.dir/k.cpp.o: k_spirv.h\n\nlibk.a: CMakeFiles/k.dir/k.cpp.o\n"
+                 f"libk.a: CMakeFiles/k.dir/cpu.cpp.o\n\nbin/stage: libk.a\n")
+    with open(os.path.join(build, "CMakeFiles", "k.dir", "cpu.cpp.o.d"), "w") as fh:
+        fh.write(f"CMakeFiles/k.dir/cpu.cpp.o: /src/cpu.cpp \\\n {lab}\n")
+    with open(os.path.join(build, "CMakeFiles", "k.dir", "k.cpp.o.d"), "w") as fh:
+        fh.write(f"CMakeFiles/k.dir/k.cpp.o: /src/k.cpp {os.path.join(build, 'k_spirv.h')}\n")
+    outputs = put_lab_file(build, lab, b"vec3 f() { return vec3(0.0f); }\n", 1_000_000_000)
+    expect(sorted(outputs) == ["CMakeFiles/k.dir/cpu.cpp.o", "bin/stage", "libk.a"] and os.stat(lab).st_mtime_ns == 1_000_000_000,
+           "a submission rebuilds the objects that include its file and what they make, not the GPU kernels", repr(outputs))
+    expect(dependents(build, lab) == set(outputs), "dependents() is what put_lab_file deletes")
+
+
+def fast(pt_tests):
+    sys.path.insert(0, HERE)
+    with tempfile.TemporaryDirectory(prefix="grade_lab_fast_") as tmp:
+        rebuilt_outputs(tmp)
+        bad_usage(tmp)
+        no_sandbox_refused(tmp)
+        source_checks(tmp)
+        report_checks()
+        hint_tables(pt_tests)
+        csv_quoting(tmp)
+        sealed = sandbox_checks(tmp)
+    return 0 if sealed else 77

@@ -1,0 +1,223 @@
+"""The submissions the grader's test (tools/test_grade_lab.py) grades: labs 2 and 4 made from
+the reference functions, renamed and called by wrappers so that no line of their bodies is
+quoted here, each with one known mistake (labs/mutants.h) or one attack
+(grade_lab_attacks.py); and the helpers both parts of the test share.
+Not part of the article: tooling for teachers."""
+import os
+import re
+import sys
+
+from grade_lab_attacks import PRINT_ATTACK, plant_attack, report_attack
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+TOOL = os.path.join(HERE, "grade_lab.py")
+
+
+def expect(cond, what, output=""):
+    if not cond:
+        print("FAILED: " + what)
+        if output:
+            print(output)
+        sys.exit(1)
+    print("ok: " + what)
+
+
+def written_mutants(folder, lab, also=()):
+    """The mutants the fixtures wrote into folder (m_NAME.glsl), checked against lab's in
+    labs/mutants.h (`also`: those written under another name), so that a mutant added there
+    is not left out here."""
+    mine = sorted(f[2:-len(".glsl")] for f in os.listdir(folder) if f.startswith("m_") and f.endswith(".glsl"))
+    listed = re.findall(r'is_mutant\(([0-9]), "([a-z_0-9]+)"\)', open(os.path.join(REPO, "labs", "mutants.h")).read())
+    expect(sorted(set(m for l, m in listed if l == str(lab))) == sorted(mine + list(also)),
+           f"the fixtures write each of lab {lab}'s mutants in labs/mutants.h")
+    return mine
+
+
+def with_wrappers(rel, renames, wrappers):
+    """The reference file `rel` with its functions renamed (signature -> new name) and, before
+    its last #endif, `wrappers`: a submission built from the reference without quoting a line
+    of its bodies, which the handout leaves out (tools/make_lab_handout.py)."""
+    text = open(os.path.join(REPO, rel), encoding="utf-8").read()
+    for signature, name in renames.items():
+        if signature not in text:
+            expect(False, f"{rel} has '{signature}'")
+        text = text.replace(signature, signature.replace(signature.split("(")[0].split()[-1], name), 1)
+    at = text.rindex("#endif")
+    return text[:at] + wrappers + "\n" + text[at:]
+
+
+def reference(rel):
+    return open(os.path.join(REPO, rel), encoding="utf-8").read()
+
+
+def write(folder, files, also=""):
+    """Writes each submission; a .glsl file gets `also` (the lab's other reference file) appended."""
+    for rel, text in files.items():
+        if rel.endswith(".glsl"):
+            text += "\n" + also
+        os.makedirs(os.path.dirname(os.path.join(folder, rel)), exist_ok=True)
+        with open(os.path.join(folder, rel), "w", encoding="utf-8") as fh:
+            fh.write(text)
+
+
+REFERENCES_2 = ["common/kernel/uniform_hemisphere.glsl", "common/kernel/russian_roulette.glsl"]
+
+
+def plants(work):
+    """Where r_writes_outside tries to write, and where it copies the reference to."""
+    return ([os.path.join(work, "src", "tools", "grading", "planted_by_student.py"),
+             os.path.join(REPO, "tools", "grading", "planted_by_student.py"),
+             os.path.join(work, "build", "bin", "planted_by_student"), "/planted_by_student"],
+            os.path.join(work, "build", "copied_reference.glsl"))
+
+
+def lab2_fixtures(folder, work=None, out=None):
+    """Lab 2's submissions. work and out (the grading run's folders) aim the attacks."""
+    work, out = work or "/nonexistent", out or "/nonexistent"
+    rel = "common/kernel/uniform_hemisphere.glsl"
+    renames = {"vec3 sample_uniform_hemisphere(vec2 u)": "reference_sampler",
+               "float uniform_hemisphere_pdf()": "reference_pdf"}
+
+    def variant(sampler="return reference_sampler(u);", pdf="return reference_pdf();"):
+        return with_wrappers(rel, renames, f"vec3 sample_uniform_hemisphere(vec2 u) {{\n  {sampler}\n}}\n\n"
+                                           f"float uniform_hemisphere_pdf() {{\n  {pdf}\n}}\n")
+
+    weight = {"vec3 uniform_bounce_weight(vec3 f, vec3 wi)": "reference_weight"}
+
+    def bounce(body):
+        return with_wrappers(rel, weight, f"vec3 uniform_bounce_weight(vec3 f, vec3 wi) {{\n  {body}\n}}\n")
+
+    no_pdf = bounce("return reference_weight(f, wi) / (2.0f * kPi);")
+    targets, copy_to = plants(work)
+    write(folder, {
+        "a_correct.glsl": reference(rel),
+        "b_syntax_error.glsl": variant(sampler="return reference_sampler(u)"),
+        "c_pdf_2pi.glsl": variant(pdf="return 2.0f * kPi;"),
+        # The reference's cos(theta) is u.x: feeding it cos of a uniform angle makes theta uniform.
+        "d_theta_uniform.glsl": variant(sampler="return reference_sampler(vec2(cos(0.5f * kPi * u.x), u.y));"),
+        "e_convention/lab2.glsl": variant(sampler="return reference_sampler(vec2(u.y, u.x));"),
+        # A count down on an unsigned i that never ends (g++ warns: always true).
+        "f_endless_loop.glsl": variant(sampler="float acc = 0.0f;\n  for (uint i = 4u; i >= 0u; --i) {\n"
+                                               "    acc += u.x;\n  }\n  return reference_sampler(u + vec2(0.0f * acc));"),
+        # A read far past the end of the scene's materials: SIGSEGV on the CPU (the read decides
+        # the sample: 0 * x is not folded away without -ffast-math).
+        "g_crash.glsl": variant(sampler="return reference_sampler(u + vec2(0.0f * materials[100000000 + int(u.y)].metallic));"),
+        "h_empty/README.txt": "lab2.glsl was forgotten\n",
+        # Lab 2's other known-wrong answers (labs/mutants.h; d_theta_uniform is its
+        # uniform_theta_uniform), each the renamed reference wrapped to make that mistake.
+        "m_uniform_no_radius.glsl": variant(sampler="vec3 v = reference_sampler(u);\n  "
+                                                    "float r = max(length(vec2(v.x, v.y)), 1e-30f);\n  "
+                                                    "return vec3(v.x / r, v.y / r, v.z);"),
+        "m_uniform_pdf_one_over_pi.glsl": variant(pdf="return 1.0f / kPi;"),
+        # The attacks: each would pass, or plant its files, if the grader let it.
+        "r_includes_reference.glsl": "".join(f'#include "{r}"\n' for r in REFERENCES_2),
+        "r_writes_outside.glsl": no_pdf + plant_attack(targets, os.path.join(work, "src", rel), copy_to),
+        "r_rewrites_report.glsl": no_pdf + report_attack([os.path.join(out, "logs", "r_rewrites_report.tests.xml"),
+                                                          os.path.join(work, "build", "report.xml")]),
+        "r_prints_1gb.glsl": reference(rel) + PRINT_ATTACK,
+    }, also=reference("common/kernel/russian_roulette.glsl"))
+    # The bounce weight: the printed factor (erratum 1), the cosine or the pdf left out.
+    write(folder, {
+        "m_bounce_printed_factor.glsl": bounce("return reference_weight(f, wi) / (4.0f * kPi * kPi);"),
+        "m_bounce_no_cosine.glsl": bounce("return reference_weight(f, wi) / max(wi.z, 1e-30f);"),
+        "m_bounce_no_pdf.glsl": bounce("return reference_weight(f, wi) / (2.0f * kPi);"),
+    }, also=reference("common/kernel/russian_roulette.glsl"))
+    # The roulette's survivor weight, 1 / p: made p, or 1.
+    roulette = {"float russian_roulette(vec3 beta, uint mode)": "reference_roulette"}
+
+    def survivor(value):
+        return with_wrappers("common/kernel/russian_roulette.glsl", roulette,
+                             "float russian_roulette(vec3 beta, uint mode) {\n  float r = reference_roulette(beta, mode);\n"
+                             f"  return r > 0.0f ? {value} : 0.0f;\n}}\n")
+
+    write(folder, {
+        "m_roulette_times_p.glsl": survivor("1.0f / r"),
+        "m_roulette_unweighted.glsl": survivor("1.0f"),
+    }, also=reference(rel))
+
+
+def lab4_fixtures(folder):
+    rel = "common/kernel/triangle_light.glsl"
+    renames = {"LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick)": "reference_sample",
+               "float triangle_light_pdf(uint index, vec3 wi, float dist)": "reference_pdf"}
+
+    def variant(sample="return reference_sample(index, p, u, pick);", pdf="return reference_pdf(index, wi, dist);",
+                helpers=""):
+        return with_wrappers(rel, renames, helpers +
+                             f"LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick) {{\n  {sample}\n}}\n\n"
+                             f"float triangle_light_pdf(uint index, vec3 wi, float dist) {{\n  {pdf}\n}}\n")
+
+    write(folder, {
+        "a_correct.glsl": reference(rel),
+        "b_pdf_doubled.glsl": variant(sample="return reference_sample(index, p, u, 2.0f * pick);"),
+        # Only the pdf of a given direction is wrong: stage4 never calls it, the tests do, the
+        # held-back one ([held_back], not in the handout) among them.
+        "c_pdf_mismatch.glsl": variant(pdf="return 2.0f * reference_pdf(index, wi, dist);"),
+    }, also=reference("common/kernel/emission_rule.glsl"))
+    # Lab 4's known-wrong answers (labs/mutants.h): a factor of the pdf d^2 / (cos_y area) x
+    # P(light) left out in the sample and in triangle_light_pdf alike (with_pdf() multiplies
+    # a sample's pdf by what was left out and divides its weight by it), or only in the pdf;
+    # the back of a one-sided light lit; the barycentric weights unfolded; the emission rule.
+    helpers = """
+vec3 mutant_normal(uint index) {
+  Triangle t = triangles[index];
+  return normalize(cross(vec3(t.p1 - t.p0), vec3(t.p2 - t.p0)));
+}
+
+float mutant_area(uint index) {
+  Triangle t = triangles[index];
+  return 0.5f * length(cross(vec3(t.p1 - t.p0), vec3(t.p2 - t.p0)));
+}
+
+float mutant_pick(uint index) {
+  return light_pick_probability(triangles[index].light);
+}
+
+LightSample with_pdf(LightSample s, float factor) {
+  if (s.pdf > 0.0f) {
+    s.pdf *= factor;
+    s.weight /= factor;
+  }
+  return s;
+}
+
+// wi mirrored through the plane of triangle `index`.
+vec3 mutant_mirror(uint index, vec3 wi) {
+  vec3 n = mutant_normal(index);
+  return wi - 2.0f * dot(wi, n) * n;
+}
+"""
+
+    def mistake(sample_factor, pdf_factor):
+        return variant(helpers=helpers, sample=f"LightSample s = reference_sample(index, p, u, pick);\n  return with_pdf(s, {sample_factor});",
+                                 pdf=f"float r = reference_pdf(index, wi, dist);\n  return r > 0.0f ? r * {pdf_factor} : 0.0f;")
+
+    emission = {"bool counts_emission(uint depth, bool after_delta)": "reference_counts"}
+
+    def rule(body):
+        return with_wrappers("common/kernel/emission_rule.glsl", emission,
+                             f"bool counts_emission(uint depth, bool after_delta) {{\n  {body}\n}}\n")
+
+    write(folder, {
+        "m_light_no_cos_y.glsl": mistake("abs(dot(s.wi, mutant_normal(index)))", "abs(dot(wi, mutant_normal(index)))"),
+        "m_light_no_distance.glsl": mistake("1.0f / (s.dist * s.dist)", "(1.0f / (dist * dist))"),
+        "m_light_no_area.glsl": mistake("mutant_area(index)", "mutant_area(index)"),
+        "m_light_no_pick.glsl": mistake("1.0f / pick", "(1.0f / mutant_pick(index))"),
+        "m_light_pdf_no_pick.glsl": mistake("1.0f", "(1.0f / mutant_pick(index))"),
+        "m_light_both_sides.glsl": variant(helpers=helpers,
+            sample="LightSample s = reference_sample(index, p, u, pick);\n  if (s.pdf > 0.0f) return s;\n"
+                   "  // p mirrored through the light's plane sees its front: the same point, distance and cos_y.\n"
+                   "  vec3 n = mutant_normal(index);\n"
+                   "  LightSample m = reference_sample(index, p - 2.0f * dot(p - vec3(triangles[index].p0), n) * n, u, pick);\n"
+                   "  m.wi = mutant_mirror(index, m.wi);\n  return m;",
+            pdf="float r = reference_pdf(index, wi, dist);\n"
+                "  return r > 0.0f ? r : reference_pdf(index, mutant_mirror(index, wi), dist);"),
+        # u turned into the numbers for which the reference's barycentric weights are u's own.
+        "m_light_unfolded_barycentric.glsl": variant(
+            sample="float s = u.x + u.y;\n  return reference_sample(index, p, vec2(s * s, s > 0.0f ? u.y / s : 0.0f), pick);"),
+    }, also=reference("common/kernel/emission_rule.glsl"))
+    write(folder, {
+        "m_emission_always.glsl": rule("return reference_counts(depth, after_delta) || true;"),
+        "m_emission_camera_only.glsl": rule("return reference_counts(depth, false);"),
+    }, also=reference(rel))
