@@ -9,11 +9,9 @@
 // docs/results/accel.csv, accel_build.csv and accel_run.txt (the command, the date and
 // the machine's load).
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <fstream>
 #include <functional>
 #include <optional>
@@ -22,6 +20,7 @@
 #include <utility>
 
 #include "bench/accel.h"
+#include "bench/accel_race.h"
 #include "bench/bench.h"
 #include "common/base/error.h"
 #include "cpu/triangle_soa.h"
@@ -44,16 +43,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kMinBruteRays = 2048;  // fewer would say little; skip the count instead
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-double thread_cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
 // The CPU's model name (/proc/cpuinfo), for the run file: a section re-run alone may run
 // on another machine than the rest of the results.
 std::string cpu_model() {
@@ -74,106 +63,6 @@ std::string load_average() {
   in >> a >> b >> c;
   return in ? a + " " + b + " " + c : "unknown";
 }
-
-// work(first, last) over [0, n) in chunks taken from a shared counter by every core;
-// returns the CPU seconds the threads spent.
-template <class F> double on_all_cores(std::size_t n, std::size_t chunk, F work) {
-  std::atomic<std::size_t> next{0};
-  std::atomic<double> cpu{0.0};
-  auto worker = [&] {
-    const double t0 = thread_cpu_seconds();
-    for (std::size_t a; (a = next.fetch_add(chunk)) < n;) work(a, std::min(n, a + chunk));
-    cpu.fetch_add(thread_cpu_seconds() - t0);
-  };
-  std::vector<std::thread> pool;
-  for (unsigned i = 1; i < cores(); i++) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  return cpu.load();
-}
-
-// One method on one ray set: its speed and what it found.
-struct Result {
-  Result(std::string m, std::string d) : method(std::move(m)), device(std::move(d)) {}
-  std::string method, device, note;
-  bool measured = false;
-  double wall = 0.0, cpu = 0.0;  // seconds of the counted passes (cpu: summed over threads)
-  std::uint64_t rays = 0, passes = 0;
-  std::vector<float> t;                     // per ray of the set (kMiss: no hit)
-  std::vector<std::size_t> subset;          // the rays traced, when not all of them
-  std::function<void(bool counted)> pass;   // one pass over its rays
-};
-
-// The methods' passes in turn until each has run `seconds` and kMinPasses passes (after one
-// uncounted warm-up pass each, which also leaves the distances): all see the same load
-// from other jobs, and a burst of load falls on more than one pass.
-constexpr std::uint64_t kMinPasses = 3;
-void race(std::vector<Result*> methods, double seconds) {
-  for (Result* m : methods) m->pass(false);
-  auto pending = [&](const Result* m) { return m->wall < seconds || m->passes < kMinPasses; };
-  for (bool more = true; more;) {
-    more = false;
-    for (Result* m : methods) {
-      if (pending(m)) m->pass(true), more = more || pending(m);
-    }
-  }
-}
-
-// A pass of a CPU method over its rays on all cores.
-std::function<void(bool)> cpu_pass(Result& r, const RaySet& rays, std::function<void()> setup,
-                                   std::function<void(const std::size_t*, std::size_t, std::size_t, float*)> trace) {
-  return [&r, &rays, setup, trace](bool counted) {
-    r.t.assign(rays.size(), kMiss);
-    setup();
-    const std::size_t* index = r.subset.empty() ? nullptr : r.subset.data();
-    const std::size_t n = r.subset.empty() ? rays.size() : r.subset.size();
-    Clock::time_point t0 = Clock::now();
-    double cpu = on_all_cores(n, index ? 4 : 256, [&](std::size_t a, std::size_t b) { trace(index, a, b, r.t.data()); });
-    if (counted) r.wall += seconds_since(t0), r.cpu += cpu, r.rays += n, r.passes++;
-  };
-}
-
-bool differs(float a, float b) {
-  if (std::isinf(a) || std::isinf(b)) return a != b;
-  return std::fabs(a - b) > 1e-5f * std::max(a, b);
-}
-
-struct Csv {
-  std::ofstream out;
-  // Writes one method's row; `reference` is the CPU BVH's result on the same rays.
-  void row(const char* set, int level, std::size_t triangles, const Result& r, const Result& reference) {
-    std::size_t checked = 0, hits = 0, differing = 0;
-    double sum_t = 0.0;
-    auto visit = [&](std::size_t i) {
-      checked++;
-      if (!std::isinf(r.t[i])) hits++, sum_t += r.t[i];
-      if (&r != &reference && differs(r.t[i], reference.t[i])) differing++;
-    };
-    if (r.measured) {
-      if (r.subset.empty()) {
-        for (std::size_t i = 0; i < r.t.size(); i++) visit(i);
-      } else {
-        for (std::size_t i : r.subset) visit(i);
-      }
-    }
-    const unsigned threads = r.method == "bvh_gpu" ? 0u : cores();
-    out << set << "," << level << "," << triangles << "," << r.method << ",\"" << r.device << "\","
-        << (threads ? std::to_string(threads) : "") << ",";
-    if (r.measured) {
-      out << r.rays << "," << r.passes << "," << double(r.rays) / r.wall / 1e6 << ","
-          << double(r.rays) / r.cpu * cores() / 1e6 << "," << checked << "," << hits << ","
-          << (hits ? fixed(sum_t / double(hits), 7) : "") << "," << differing;
-    } else {
-      out << ",,,,,,,";
-    }
-    out << ",\"" << r.note << "\"\n";
-    std::printf("  %-7s %-8s %9s M rays/s (by CPU time %9s)  hits %zu/%zu, mean t %s, %zu differ from bvh_cpu%s%s\n",
-                set, r.method.c_str(), r.measured ? fixed(double(r.rays) / r.wall / 1e6, 4).c_str() : "-",
-                r.measured ? fixed(double(r.rays) / r.cpu * cores() / 1e6, 4).c_str() : "-", hits, checked,
-                hits ? fixed(sum_t / double(hits), 6).c_str() : "-", differing, r.note.empty() ? "" : "; ",
-                r.note.c_str());
-  }
-};
 
 }  // namespace
 

@@ -62,7 +62,7 @@ function(pt_add_stage DIR)
 #define PT_CPU_VARIANT_COUNT ${count}
 #include \"cpu/cpu_variants.h\"
 #include \"cpu/kernel_prelude.h\"
-#include \"common/render/backend.h\"
+#include \"cpu/kernel_scene.h\"
 
 namespace ${ns}::v${i} {
 #include \"cpu/kernel_begin.h\"
@@ -94,6 +94,7 @@ pt::StageKernels kernels();
 // order of cpu/cpu_variants.h.
 #include \"${DIR}/kernels.h\"
 #include \"${DIR}_kernel_spirv.h\"
+#include \"cpu/kernel_scene.h\"
 
 namespace ${ns} {
 ${declarations}

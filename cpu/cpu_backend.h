@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "common/render/backend.h"
+#include "cpu/kernel_scene.h"
 
 namespace pt {
 

@@ -1,6 +1,7 @@
-// The CPU entry point of a stage's kernel: binds the host arrays to the kernel globals of
-// kernel_bindings.h and runs render_pixel() over rows. Included INSIDE the kernel's
-// namespace by kernel_end.h, after the integrator, so each stage gets its own.
+// The CPU entry point of a stage's kernel: binds the host arrays (a KernelScene,
+// kernel_scene.h) to the kernel globals of kernel_bindings.h and runs render_pixel() over
+// rows. Included INSIDE the kernel's namespace by kernel_end.h, after the integrator, so
+// each stage gets its own.
 
 // Binds the scene and the parameters of the next pass (called on one thread).
 inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) {

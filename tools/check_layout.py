@@ -16,6 +16,10 @@ record that names the stage and its kernels, each must read as every other does 
 steps the reader follows in docs/README.md, "What main.cpp is"). They are written out in
 each stage on purpose, for the reader; this keeps the five copies from drifting apart.
 
+No source file (.cpp .h .glsl .comp .py .sh) under common/, cpu/, gpu/, the stage folders,
+labs/, tools/, bench/ or docs/figures/ is longer than MAX_LINES lines (docs/README.md's
+"about 300 lines", issue #48): a file that grows past it is split where its topics are.
+
 And the step past the article stays one step (issue #48): stage5_mis/integrator.glsl is
 stage4's plus MIS, `diff` of the two at most MAX_STEP_LINES changed lines, and a stage's
 own machinery stays in its folder: no file in common/, cpu/ or gpu/ names stage5's pilot.
@@ -175,15 +179,40 @@ def check_step(root):
     return problems
 
 
+# The longest a source file may be, and where the rule holds (tests/ not yet: issue #48).
+MAX_LINES = 300
+LENGTH_ROOTS = ("common", "cpu", "gpu", "labs", "tools", "bench", "docs/figures")
+LENGTH_ENDINGS = (".cpp", ".h", ".glsl", ".comp", ".py", ".sh")
+
+
+def check_lengths(root):
+    problems = []
+    tops = list(LENGTH_ROOTS) + sorted(t for t in os.listdir(root) if room_of(t + "/x/y") == "stage")
+    for top in tops:
+        for base, dirs, files in os.walk(os.path.join(root, top)):
+            dirs[:] = sorted(d for d in dirs if d not in (".git", "out", "__pycache__") and not d.startswith("build"))
+            for name in sorted(files):
+                if not name.endswith(LENGTH_ENDINGS):
+                    continue
+                path = os.path.join(base, name)
+                with open(path, encoding="utf-8", errors="replace") as fh:
+                    count = len(fh.read().splitlines())
+                if count > MAX_LINES:
+                    problems.append(f"{os.path.relpath(path, root)}: {count} lines (at most {MAX_LINES}): split it "
+                                    "by topic, each part with its own opening comment")
+    return problems
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     args = parser.parse_args()
-    problems = check(args.root) + check_stages(args.root) + check_step(args.root)
+    problems = check(args.root) + check_stages(args.root) + check_step(args.root) + check_lengths(args.root)
     for p in problems:
         print("error: " + p)
     print(f"check_layout: {len(problems)} problem(s)" if problems
-          else "check_layout: every include follows the arrows; the stage folders hold one program")
+          else f"check_layout: every include follows the arrows; the stage folders hold one program; no source "
+               f"file is over {MAX_LINES} lines")
     return 1 if problems else 0
 
 

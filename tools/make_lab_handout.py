@@ -14,6 +14,7 @@ repository without .git and build folders, in which
     teacher's tree), but the students never see them (docs/labs/teachers.md);
   - the known-wrong answers of labs/mutants.h (each is an answer with one thing wrong) are
     removed too, down to the file's opening comment (the check build then has no mutants);
+    these two steps are in handout_held_back.py;
   - the comments of the reference files, which name the formulas, are cut (a one-line note
     opens each instead), and in the docs every piece of code (a `span` or a line of a code
     block) that quotes a statement of the reference bodies which no other source file holds
@@ -27,6 +28,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import docs_check  # noqa: E402
+from handout_held_back import HELD_BACK_FILES, strip_held_back, strip_held_back_files  # noqa: E402,F401
 
 # What a function of each return type returns in the handout in place of its body; lab N's
 # build never compiles it (it compiles labs/labN.glsl instead).
@@ -46,12 +48,6 @@ DEFINITION = re.compile(r"^(\w+)\s+(\w+)\s*\(.*\{\s*$")
 REGION_START = re.compile(r"\[lab (\d) answer\]")
 REGION_END = re.compile(r"\[/lab (\d) answer\]")
 SOURCE_ENDINGS = (".glsl", ".comp", ".h", ".cpp")
-# A held-back test: a Catch2 test case whose tags (up to the line that opens its body) hold [held_back].
-TEST_CASE = re.compile(r"^(TEST_CASE|TEST_CASE_METHOD|SCENARIO)\s*\(")
-HELD_BACK = "[held_back]"
-# Files held back whole: the mutants, each an answer of some lab with one mistake in it.
-HELD_BACK_FILES = ["labs/mutants.h"]
-
 
 def strip_sources(dest, lab):
     """Replaces the body of every function of lab N's reference files; returns their (path, name)."""
@@ -183,63 +179,6 @@ def strip_regions(dest, lab):
     return cut
 
 
-def strip_held_back(dest):
-    """Removes every test case tagged [held_back] from tests/; returns their (file, first line)."""
-    removed = []
-    for rel in source_files(dest, "tests"):
-        lines = docs_check.read_lines(os.path.join(dest, rel))
-        out, i, cases, held = [], 0, 0, 0
-        while i < len(lines):
-            if not TEST_CASE.match(lines[i]):
-                out.append(lines[i])
-                i += 1
-                continue
-            cases += 1
-            opens = i  # the line that opens the body: the test's name and tags are above it
-            while opens < len(lines) and not lines[opens].rstrip().endswith("{"):
-                opens += 1
-            header = " ".join(lines[i:opens + 1])
-            end = docs_check.block_end(lines, i) if opens < len(lines) else None
-            if HELD_BACK not in header:
-                out.append(lines[i])
-                i += 1
-                continue
-            if end is None:
-                raise SystemExit(f"make_lab_handout: {rel}:{i + 1}: a {HELD_BACK} test case without its closing '}}'")
-            while out and out[-1].startswith("//"):  # the comment that describes it
-                out.pop()
-            while out and not out[-1].strip() and end + 1 < len(lines) and not lines[end + 1].strip():
-                out.pop()  # one blank line between the neighbours, not two
-            removed.append((rel, i + 1))
-            held += 1
-            i = end + 1
-        if cases and held == cases:
-            # Every test of the file is held back: its helpers go too, down to its opening comment.
-            head = next((k for k, line in enumerate(lines) if not line.startswith("//")), len(lines))
-            out = lines[:head] + [f"// This handout holds none of its tests (tools/make_lab_handout.py, "
-                                  f"docs/labs/teachers.md).", ""]
-        if out != lines:
-            with open(os.path.join(dest, rel), "w", encoding="utf-8") as fh:
-                fh.write("\n".join(out))
-    return removed
-
-
-def strip_held_back_files(dest):
-    """Cuts each of HELD_BACK_FILES down to its opening comment; returns those it cut."""
-    cut = []
-    for rel in HELD_BACK_FILES:
-        path = os.path.join(dest, rel)
-        if not os.path.exists(path):
-            continue
-        lines = docs_check.read_lines(path)
-        head = next((k for k, line in enumerate(lines) if not line.startswith("//")), len(lines))
-        with open(path, "w", encoding="utf-8") as fh:
-            fh.write("\n".join(lines[:head] + ["// This handout holds none of them (tools/make_lab_handout.py, "
-                                                "docs/labs/teachers.md).", ""]))
-        cut.append(rel)
-    return cut
-
-
 def strip_docs(dest, lab, names):
     """Replaces the docs' excerpts of the removed functions by a note."""
     for md in docs_check.markdown_files(dest):
@@ -283,7 +222,8 @@ def main():
     strip_doc_quotes(dest, lab, answer_statements(root, lab))
     strip_reference_comments(dest, lab)
     regions = strip_regions(dest, lab)
-    held_back = strip_held_back(dest) + [(rel, 1) for rel in strip_held_back_files(dest)]
+    held_back = strip_held_back(dest, source_files(dest, "tests"))
+    held_back += [(rel, 1) for rel in strip_held_back_files(dest)]
     # The shorter bodies move the lines below them: renumber the docs' line references.
     problems = docs_check.run(dest, update=True)
     if problems.errors:

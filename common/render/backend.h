@@ -17,40 +17,7 @@ namespace pt {
 
 struct Scene;
 struct Bvh;
-struct WideBvh;  // the CPU backend's own form of the BVH (cpu/wide_bvh.h)
-
-// The scene arrays as the CPU kernel sees them (cpu/kernel_bindings.h; the GLSL buffers of gpu/kernel_bindings.glsl).
-struct KernelScene {
-  const Triangle* triangles;
-  const Sphere* spheres;
-  const Material* materials;
-  const PointLight* point_lights;
-  uint* counters;  // kCounterCount values, updated by the kernel
-  const Light* lights;
-  const uint* light_guide = nullptr;  // the light table's guide (scene.h light_guide)
-  const float* triangle_soa = nullptr;  // the triangles as arrays (triangle_soa.h), or nullptr
-  uint triangle_soa_stride = 0;
-  const float* sphere_soa = nullptr;  // the spheres as arrays (cpu/sphere_soa.h), or nullptr
-  uint sphere_soa_stride = 0;
-  uint sphere_soa_count = 0;
-  const BvhNode* bvh_nodes = nullptr;  // the BVH (common/scene/bvh.h), or nullptr
-  const uint* bvh_indices = nullptr;
-  const WideBvh* wide_bvh = nullptr;   // the same tree for the CPU's SIMD walk, or nullptr
-  // Textures and vertex colours (common/kernel/texture.glsl), or nullptr without them.
-  const TriangleAttributes* triangle_attributes = nullptr;
-  const MaterialTextures* material_textures = nullptr;
-  const Texture* textures = nullptr;
-  const uint* texels = nullptr;
-  const TriangleShading* triangle_shading = nullptr;  // shading normals, or nullptr without them
-  const float* environment_radiance = nullptr;  // the environment map (common/scene/environment.h),
-  const float* environment_tables = nullptr;    // or nullptr without one
-};
-
-// A stage's kernel compiled as C++ (cpu/kernel_entry.h).
-struct CpuKernel {
-  void (*bind)(const KernelScene& scene, const FrameParams& pass);
-  void (*render_rows)(uint y0, uint y1, glm::vec4* out);
-};
+struct CpuKernel;  // a stage's kernel compiled as C++, as the CPU backend calls it (cpu/kernel_scene.h)
 
 // Everything a stage hands to the backends: its name, and its kernel in both forms.
 struct StageKernels {

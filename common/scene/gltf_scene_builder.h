@@ -1,6 +1,6 @@
 // The glTF loader's walk of the default scene (gltf_loader.cpp), which fills a pt::Scene:
-// nodes, meshes and materials in gltf_loader.cpp, cameras and KHR_lights_punctual lights in
-// gltf_cameras_lights.cpp. Internal to the loader; not part of the article: how a file
+// nodes, meshes and materials in gltf_loader.cpp, a primitive's triangles in gltf_triangles.cpp,
+// cameras and KHR_lights_punctual lights in gltf_cameras_lights.cpp. Internal to the loader; not part of the article: how a file
 // becomes the scene (the contract (README.md) "Scenes").
 #pragma once
 

@@ -1,5 +1,5 @@
-// Helpers shared by the glTF checks (gltf_precheck.cpp, gltf_validate.cpp and
-// gltf_accessors.cpp): the extensions the renderer reads, numbers and byte counts in
+// Helpers shared by the glTF checks (gltf_precheck.cpp, gltf_validate.cpp, gltf_elements.cpp
+// and gltf_accessors.cpp): the extensions the renderer reads, numbers and byte counts in
 // messages, little-endian reads, and the range check of an index into one of the file's arrays.
 #pragma once
 
