@@ -11,17 +11,13 @@
 #include <ctime>
 #include <thread>
 
+#include "bench/bench.h"
+
 namespace pt::bench {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double thread_cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 // work(first, last) over [0, n) in chunks taken from a shared counter by every core;
 // returns the CPU seconds the threads spent.

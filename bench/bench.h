@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -15,6 +16,14 @@
 #include "common/scene/scene.h"
 
 namespace pt::bench {
+
+// CPU seconds of the calling thread so far: what a worker of a timed race spent, whatever
+// else the machine runs.
+inline double thread_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 struct Config {
   int size = 64;                     // images are size x size

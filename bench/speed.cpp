@@ -36,12 +36,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double thread_cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
 // Runs work(first, count) over `count` rays split across the cores, again and again until
 // a second has passed.
 template <class F> Rate rays_per_second(std::size_t count, F work) {
