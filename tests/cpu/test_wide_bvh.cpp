@@ -70,7 +70,6 @@ void compare(const pt::WideBvh& wide, kernel::Ray ray, float t_max, int lanes, T
 // (edges and vertices too), along the axes, in random directions, bounded at infinity and
 // at the brute force's own hit distance; some with a NaN direction.
 void check(const pt::Scene& s, std::mt19937& rng, int count, const char* what, std::uint64_t min_ties = 0) {
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   pt::Bvh bvh = pt::build_bvh(s.triangles);
   kernel::triangles = s.triangles.data();
   kernel::params.triangle_count = uint(s.triangles.size());
@@ -82,22 +81,8 @@ void check(const pt::Scene& s, std::mt19937& rng, int count, const char* what, s
     REQUIRE(wide.nodes.empty() == s.triangles.empty());
     Tally tally;
     for (int r = 0; r < count; r++) {
-      glm::vec3 origin = center + 2.0f * size * glm::vec3(unit(rng), unit(rng), unit(rng));
-      glm::vec3 target = center + size * glm::vec3(unit(rng), unit(rng), unit(rng));
-      if (!s.triangles.empty() && r % 4 != 3) {
-        const pt::Triangle& t = s.triangles[std::size_t(rng() % s.triangles.size())];
-        float b1 = 0.5f * (unit(rng) + 1.0f), b2 = 0.5f * (unit(rng) + 1.0f);
-        if (r % 5 == 0) b2 = 0.0f;             // on an edge
-        if (r % 7 == 0) b1 = 0.0f, b2 = 0.0f;  // at a vertex
-        if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
-        target = (1.0f - b1 - b2) * t.p0 + b1 * t.p1 + b2 * t.p2;
-      }
-      glm::vec3 dir = target - origin;
-      if (r % 6 == 5) {  // along one axis: two direction components exactly zero
-        int k = int(rng() % 3);
-        origin = target, origin[k] += (r % 12 < 6 ? 1.5f : -1.5f) * size;
-        dir = glm::vec3(0.0f), dir[k] = r % 12 < 6 ? -1.0f : 1.0f;
-      }
+      glm::vec3 origin, dir;
+      pt::test::random_test_ray(s, rng, r, center, size, origin, dir);
       if (!(glm::length(dir) > 0.0f)) continue;
       dir = glm::normalize(dir);
       if (r % 97 == 13) dir.y = std::nanf("");  // a NaN ray: no hit, by either search

@@ -58,27 +58,12 @@ void compare(kernel::Ray ray, float t_max, Tally& tally) {
 // along the axes (zero direction components), in random directions, and bounded at the
 // brute force's own hit distance (a hit at exactly t_max is not taken).
 void shoot(const pt::Scene& s, std::mt19937& rng, int count, Tally& tally) {
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   pt::Bounds b = s.bounds();
   glm::vec3 center = b.empty() ? glm::vec3(0.0f) : 0.5f * b.lo + 0.5f * b.hi;
   float size = b.empty() ? 1.0f : std::max(glm::length(b.hi - b.lo), 1e-30f);
   for (int r = 0; r < count; r++) {
-    glm::vec3 origin = center + 2.0f * size * glm::vec3(unit(rng), unit(rng), unit(rng));
-    glm::vec3 target = center + size * glm::vec3(unit(rng), unit(rng), unit(rng));
-    if (!s.triangles.empty() && r % 4 != 3) {
-      const pt::Triangle& t = s.triangles[std::size_t(rng() % s.triangles.size())];
-      float b1 = 0.5f * (unit(rng) + 1.0f), b2 = 0.5f * (unit(rng) + 1.0f);
-      if (r % 5 == 0) b2 = 0.0f;                   // on an edge
-      if (r % 7 == 0) b1 = 0.0f, b2 = 0.0f;        // at a vertex
-      if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
-      target = (1.0f - b1 - b2) * t.p0 + b1 * t.p1 + b2 * t.p2;
-    }
-    glm::vec3 dir = target - origin;
-    if (r % 6 == 5) {  // along one axis: two direction components exactly zero
-      int k = int(rng() % 3);
-      origin = target, origin[k] += (r % 12 < 6 ? 1.5f : -1.5f) * size;
-      dir = glm::vec3(0.0f), dir[k] = r % 12 < 6 ? -1.0f : 1.0f;
-    }
+    glm::vec3 origin, dir;
+    pt::test::random_test_ray(s, rng, r, center, size, origin, dir);
     if (!(glm::length(dir) > 0.0f)) continue;
     kernel::Ray ray(origin, glm::normalize(dir));
     compare(ray, kernel::kInfinity, tally);

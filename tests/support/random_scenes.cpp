@@ -48,4 +48,25 @@ void add_spread_triangles(Scene& s, std::mt19937& rng, int count) {
   }
 }
 
+void random_test_ray(const Scene& s, std::mt19937& rng, int r, glm::vec3 center, float size, glm::vec3& origin,
+                     glm::vec3& dir) {
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  origin = center + 2.0f * size * glm::vec3(unit(rng), unit(rng), unit(rng));
+  glm::vec3 target = center + size * glm::vec3(unit(rng), unit(rng), unit(rng));
+  if (!s.triangles.empty() && r % 4 != 3) {
+    const Triangle& t = s.triangles[std::size_t(rng() % s.triangles.size())];
+    float b1 = 0.5f * (unit(rng) + 1.0f), b2 = 0.5f * (unit(rng) + 1.0f);
+    if (r % 5 == 0) b2 = 0.0f;             // on an edge
+    if (r % 7 == 0) b1 = 0.0f, b2 = 0.0f;  // at a vertex
+    if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
+    target = (1.0f - b1 - b2) * t.p0 + b1 * t.p1 + b2 * t.p2;
+  }
+  dir = target - origin;
+  if (r % 6 == 5) {  // along one axis: two direction components exactly zero
+    int k = int(rng() % 3);
+    origin = target, origin[k] += (r % 12 < 6 ? 1.5f : -1.5f) * size;
+    dir = glm::vec3(0.0f), dir[k] = r % 12 < 6 ? -1.0f : 1.0f;
+  }
+}
+
 }  // namespace pt::test

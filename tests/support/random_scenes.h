@@ -19,4 +19,11 @@ void add_copied_grid(Scene& s, int n);
 // `count` triangles from 1e-6 to 1e6 in size, each at a distance from the origin to match.
 void add_spread_triangles(Scene& s, std::mt19937& rng, int count);
 
+// Ray number `r` of a traversal test of `s` (within `size` of `center`, its bounds): from a
+// random point toward a random point, three in four toward a triangle of the scene (on an
+// edge for every fifth, at a vertex for every seventh), one in six along an axis (two
+// direction components exactly 0). The direction is not normalised and may be zero.
+void random_test_ray(const Scene& s, std::mt19937& rng, int r, glm::vec3 center, float size, glm::vec3& origin,
+                     glm::vec3& dir);
+
 }  // namespace pt::test
