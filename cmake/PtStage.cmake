@@ -1,4 +1,5 @@
-# pt_add_stage(DIR [CPU_GROUPS N] [USES_LIGHT_TABLE] [LAB N]): one stage of the article,
+# pt_add_stage(DIR [CPU_GROUPS N] [USES_LIGHT_TABLE] [LAB N] [BEFORE_RENDER FN HEADER H SOURCES FILES...]):
+# one stage of the article,
 # made from its folder's integrator.glsl and main.cpp. The build writes the rest:
 #   - DIR's GPU kernel: the backend's bindings, the integrator, the pixel loop and the GPU
 #     entry point, compiled to SPIR-V and embedded (specialised per scene at run time);
@@ -8,12 +9,15 @@
 #   - DIR/kernels.h: `stageK::kernels()`, the kernel in both forms (pt::StageKernels);
 #   - the kernel library pt_DIR (used by the program and the tests) and the program DIR.
 # USES_LIGHT_TABLE: the kernel reads the light table and the point lights (light sampling),
-# so they are uploaded. LAB N: lab N asks the student for this stage's integrator
+# so they are uploaded. BEFORE_RENDER FN: the stage's own step before the render, the C++
+# function FN (a pt::BeforeRender, common/render/backend.h) declared in the stage's header
+# DIR/H and defined in its SOURCES (host files of the stage's folder, built into
+# pt_DIR): stage6's pilot. LAB N: lab N asks the student for this stage's integrator
 # (cmake/Labs.cmake): its build compiles labs/labN.glsl in its place.
 # Tests make kernels that are not stages the same way: INTEGRATOR FILE (instead of
 # DIR/integrator.glsl), NAMESPACE NS (instead of DIR's stageK) and NO_PROGRAM.
 function(pt_add_stage DIR)
-  cmake_parse_arguments(ARG "USES_LIGHT_TABLE;NO_PROGRAM" "CPU_GROUPS;LAB;INTEGRATOR;NAMESPACE" "" ${ARGN})
+  cmake_parse_arguments(ARG "USES_LIGHT_TABLE;NO_PROGRAM" "CPU_GROUPS;LAB;INTEGRATOR;NAMESPACE;BEFORE_RENDER;HEADER" "SOURCES" ${ARGN})
   if(NOT DEFINED ARG_CPU_GROUPS OR PT_CPU_GENERAL_ONLY)
     set(ARG_CPU_GROUPS 0)
   endif()
@@ -79,6 +83,13 @@ namespace ${ns}::v${i} {
   else()
     set(uses_lights false)
   endif()
+  set(before_render nullptr)
+  set(before_render_include "")
+  if(DEFINED ARG_BEFORE_RENDER)
+    set(before_render "&${ARG_BEFORE_RENDER}")
+    set(before_render_include "#include \"${DIR}/${ARG_HEADER}\"\n")
+  endif()
+  list(TRANSFORM ARG_SOURCES PREPEND ${src}/)
   file(CONFIGURE OUTPUT ${out}/kernels.h CONTENT
 "// Written by cmake/PtStage.cmake: ${DIR}'s kernel in both forms (C++ for the CPU, SPIR-V for Vulkan).
 #pragma once
@@ -95,16 +106,16 @@ pt::StageKernels kernels();
 #include \"${DIR}/kernels.h\"
 #include \"${DIR}_kernel_spirv.h\"
 #include \"cpu/kernel_scene.h\"
-
+${before_render_include}
 namespace ${ns} {
 ${declarations}
 pt::StageKernels kernels() {
   static const pt::CpuKernel cpu[] = {${table}};
-  return pt::StageKernels{\"${DIR}\", cpu, ${DIR}_kernel_spirv, ${uses_lights}};
+  return pt::StageKernels{\"${DIR}\", cpu, ${DIR}_kernel_spirv, ${uses_lights}, ${before_render}};
 }
 }  // namespace ${ns}
 ")
-  add_library(pt_${DIR} STATIC ${sources} ${out}/kernels.cpp ${${DIR}_kernel_SPIRV_HEADER})
+  add_library(pt_${DIR} STATIC ${sources} ${ARG_SOURCES} ${out}/kernels.cpp ${${DIR}_kernel_SPIRV_HEADER})
   target_include_directories(pt_${DIR} PUBLIC ${CMAKE_CURRENT_BINARY_DIR} PRIVATE ${out})
   target_link_libraries(pt_${DIR} PUBLIC pt_common)
   if(NOT ARG_NO_PROGRAM)

@@ -41,6 +41,7 @@ class CpuBackend : public Backend {
 
   std::string kind() const override { return "cpu"; }
   std::string device_name() const override { return std::to_string(threads_) + " threads"; }
+  BeforeRender before_render() const override { return kernels_.before_render; }
 
   void set_scene(const Scene& scene, uint features, const Bvh* bvh) override {
     kernel_ = cpu_kernel_for(kernels_, features);

@@ -65,6 +65,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
 
   std::string kind() const override { return "gpu"; }
   std::string device_name() const override { return context_.device_name(); }
+  BeforeRender before_render() const override { return kernels_.before_render; }
 
   void set_scene(const Scene& scene, uint features, const Bvh* bvh) override {
     one_sample_ = false;  // a new scene may fit the loop budget again

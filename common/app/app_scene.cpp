@@ -83,7 +83,7 @@ void warn_about_lights(const Scene& scene, const Options& options, const Stage& 
   if (!scene.point_lights.empty() && !stage.info.sees_point_lights) {
     std::fprintf(stderr,
                  "%s: the scene's %zu punctual light(s) (point, spot, directional) are delta lights: only light "
-                 "sampling (stage4, stage5) sees them%s\n",
+                 "sampling (stages 4 to 6) sees them%s\n",
                  name, scene.point_lights.size(),
                  area_lights || sky || stage.info.every_surface_emits ? "" : ", so this image will be black");
   }

@@ -177,7 +177,7 @@ RenderResult load_checkpoint(const std::string& path, std::uint64_t key, const c
     refuse(path, "is of a different render (scene, seed, sky or --all-features, --rr, --depth-cap differ)",
            "resume with the options it was made with, or render without --resume");
   }
-  RenderResult r{Film(width, height), h.seconds, h.kernel_seconds, {}, 0, {}, {}};
+  RenderResult r{Film(width, height), h.seconds, h.kernel_seconds, {}, 0, {}, {}, {}};
   r.film.restore(h.spp, std::move(sums));
   r.passes = h.passes;
   r.counters.depth_cap = h.depth_cap;

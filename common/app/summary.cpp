@@ -46,6 +46,7 @@ std::string summary_line(const char* stage, const Backend& backend, const Render
   if (c.depth_cap) s += ", " + std::to_string(c.depth_cap) + " paths stopped at the depth cap";
   if (!tags.empty()) s += " " + tags;
   if (r.bvh) s += " " + r.bvh->summary();
+  if (!r.stage_note.empty()) s += " " + r.stage_note;
   return s;
 }
 

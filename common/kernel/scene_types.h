@@ -216,6 +216,10 @@ struct FrameParams {
   uint env_height;
   float env_cos;
   float env_sin;
+  // What a stage's own step before the render measured, for its kernel to read (the one
+  // hook a stage may provide: StageKernels::before_render, common/render/backend.h); zero
+  // for the stages without one. stage6_variance_aware keeps its MIS factors here.
+  vec4 stage_params;
 };
 
 // One node of the bounding volume hierarchy over the triangles (common/scene/bvh.h), in a
@@ -241,7 +245,8 @@ static_assert(offsetof(PointLight, intensity) == 16 && offsetof(PointLight, dire
 static_assert(sizeof(Light) == 16);
 static_assert(sizeof(Camera) == 64);
 static_assert(offsetof(Camera, forward) == 16 && offsetof(Camera, right) == 32 && offsetof(Camera, up) == 48);
-static_assert(sizeof(FrameParams) == 160 && offsetof(FrameParams, env_width) == 144);
+static_assert(sizeof(FrameParams) == 176 && offsetof(FrameParams, env_width) == 144);
+static_assert(offsetof(FrameParams, stage_params) == 160);
 static_assert(offsetof(FrameParams, sky) == 64 && offsetof(FrameParams, width) == 80);
 static_assert(offsetof(FrameParams, triangle_count) == 96 && offsetof(FrameParams, seed) == 112);
 static_assert(offsetof(FrameParams, light_count) == 128 && offsetof(FrameParams, scene_radius) == 132);

@@ -18,6 +18,22 @@ namespace pt {
 struct Scene;
 struct Bvh;
 struct CpuKernel;  // a stage's kernel compiled as C++, as the CPU backend calls it (cpu/kernel_scene.h)
+class Backend;
+
+// What a stage's own step before the render found: the values its kernel reads in
+// FrameParams::stage_params during the render, and a note for the summary line.
+struct StageTuning {
+  glm::vec4 params{0.0f};
+  std::string note;  // one bracketed phrase for the summary line, or empty
+};
+
+// The one hook a stage may provide (stage6_variance_aware: a small render that sets its MIS
+// weights): render() calls it on the backend once the scene is set, before the first pass,
+// with the render's params and feature bits and a buffer of the image's size that it may
+// render smaller passes into. It must be deterministic: a resumed render or a part calls it
+// again and must get the same values.
+using BeforeRender = StageTuning (*)(Backend& backend, const FrameParams& params, uint features,
+                                     std::span<glm::vec4> buffer);
 
 // Everything a stage hands to the backends: its name, and its kernel in both forms.
 struct StageKernels {
@@ -27,6 +43,7 @@ struct StageKernels {
                                          // copy alone is the general kernel
   std::span<const std::uint32_t> spirv;  // the same integrator compiled to SPIR-V
   bool uses_light_table = false;         // reads lights[] and point_lights[] (stage4)
+  BeforeRender before_render = nullptr;  // the stage's step before the render, if any
 };
 
 // A Vulkan device as --backend auto weighs it (common/app/app.h, Backends::gpu_devices):
@@ -79,6 +96,8 @@ class Backend {
   // render_pixel(): the radiance sum, and the root of the squared luminances' sum in slot
   // kPassRootSumSquares).
   virtual PassResult run_pass(const FrameParams& params, std::span<glm::vec4> out) = 0;
+  // The stage's step before the render (StageKernels::before_render), or nullptr.
+  virtual BeforeRender before_render() const { return nullptr; }
 };
 
 }  // namespace pt

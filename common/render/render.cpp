@@ -84,7 +84,7 @@ FrameParams make_frame_params(const Scene& scene, const RenderSettings& s) {
 }
 
 RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& s, const RenderHooks& h) {
-  RenderResult result = h.resume ? *h.resume : RenderResult{Film(s.width, s.height), 0.0, 0.0, {}, 0, {}, {}};
+  RenderResult result = h.resume ? *h.resume : RenderResult{Film(s.width, s.height), 0.0, 0.0, {}, 0, {}, {}, {}};
   result.device_error.clear();
   const double seconds_before = result.seconds;
   FrameParams params = make_frame_params(scene, s);
@@ -103,6 +103,14 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
   const uint features = s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky);
   try {
     backend.set_scene(scene, features, bvh);
+    // The stage's own step before the render, if it has one (stage6_variance_aware: a small
+    // render that sets its MIS weights). A resumed render or a part runs it again and gets
+    // the same values, so it renders the same samples.
+    if (BeforeRender before = backend.before_render()) {
+      StageTuning tuning = before(backend, params, features, pass);
+      params.stage_params = tuning.params;
+      result.stage_note = tuning.note;
+    }
   } catch (const Error& e) {  // a device that cannot hold the scene: nothing rendered yet
     if (e.code() != kExitNoDevice) throw;
     result.device_error = e.what();

@@ -74,6 +74,7 @@ struct RenderResult {
                              // driver cut a pass short (a wrong pass is never added): the
                              // film has the samples done before it
   std::optional<BvhStats> bvh;  // the BVH this render searched (none: --accel none or no triangles)
+  std::string stage_note;       // what the stage's step before the render found (StageTuning)
 };
 
 // Largest number of samples per pixel in one pass: passes stay short (a desktop GPU's
