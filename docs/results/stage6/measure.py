@@ -5,13 +5,15 @@ Relative RMSE against a long reference render, CPU seconds, efficiency 1 / (relM
 
   docs/results/stage6/measure.py --bin build/bin --work out/s6m --csv docs/results/stage6/efficiency.csv \
       --scene cornell:256:4 --program stage5=stage5_mis --program stage6=stage6_variance_aware \
-      [--reference stage6_variance_aware:16384] [--rr throughput] [--seeds 4] [--mode spp|time]
+      [--reference stage5_mis:16384] [--rr throughput] [--seeds 4] [--mode spp|time]
 
 --scene NAME:SPP:SECONDS renders builtin:NAME at 64 x 64, SPP samples per pixel (--mode spp)
 or for SECONDS (--mode time, --time-budget); --program LABEL=PATH (relative to --bin, or a path)
 is one row per scene; builtin:furnace is compared with its closed form, 2 in every pixel.
 Every run has one thread (--threads 1) and the default sampler; seeds 1 ... --seeds; the
-reference seed 1000 (another seed: independent of every run). Needs oiiotool.
+reference seed 1000 (another seed: independent of every run), rendered once into --work as
+ref_NAME.exr (with its summary line in ref_NAME.exr.txt): put another render there to use it
+instead. Needs oiiotool.
 """
 import argparse
 import csv
@@ -67,7 +69,8 @@ def reference(args, scene):
     with open(path + ".txt") as f:
         log = f.read()
     err = float(re.search(r"per-pixel relative error ([0-9.eE+-]+)", log).group(1))
-    return path, f"{os.path.basename(exe)} {spp} spp", err
+    made = re.match(r"(\S+): .*?, (\d+) spp", log)  # the program and spp that made it
+    return path, f"{made.group(1)} {made.group(2)} spp", err
 
 
 def exe_path(args, name):
@@ -81,7 +84,7 @@ def main():
     p.add_argument("--csv", required=True)
     p.add_argument("--scene", action="append", required=True)
     p.add_argument("--program", action="append", required=True)
-    p.add_argument("--reference", default="stage6_variance_aware:16384")
+    p.add_argument("--reference", default="stage5_mis:16384")
     p.add_argument("--rr", default="throughput")
     p.add_argument("--seeds", type=int, default=4)
     p.add_argument("--mode", choices=("spp", "time"), default="spp")
