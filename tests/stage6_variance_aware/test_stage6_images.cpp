@@ -14,8 +14,8 @@
 using namespace pt;
 using namespace pt::test;
 
-TEST_CASE("stage6: the box furnace with every bounce is Le / (1 - albedo) under either roulette: the emission of a "
-          "path's last ray counts once",
+TEST_CASE("stage6: the box furnace with every bounce is Le / (1 - albedo) = 2 at albedo 0.5 under either roulette: "
+          "the emission of a path's last ray counts once",
           "[stage6][statistical][analytic]") {
   // Every wall emits: every ray a path traces finds Le, the last one too. The roulette's
   // verdict on the path beyond a hit is drawn before the ray is traced and applied after the
@@ -23,8 +23,8 @@ TEST_CASE("stage6: the box furnace with every bounce is Le / (1 - albedo) under 
   // survivor's 1 / p, once without), or forgetting the 1 / p, moves the image by a share of
   // Le per bounce that the roulette ends (29% of the paths per bounce at albedo 0.5 under
   // the square-root roulette, half under the fixed one).
+  // (Albedo 0.8, longer paths: the furnace sphere below.)
   check_furnace(stage6::kernels(), 0.5f, kRouletteThroughput, test_seed(6100));
-  check_furnace(stage6::kernels(), 0.8f, kRouletteThroughput, test_seed(6110));
   check_furnace(stage6::kernels(), 0.5f, kRouletteFixed, test_seed(6120));
 }
 

@@ -96,17 +96,20 @@ TEST_CASE("stage6 pilot: the light strategy counts more under a square light, th
   CHECK(pilot("furnace", 64, 64, test_seed(6420)) <= 0.5f);
   // The Cornell box: a small light overhead (measured: 86 times apart).
   CHECK(pilot("cornell", 64, 64, test_seed(6430)) >= 4.0f);
-  // Glossy lobes are measured apart; a pilot is at most 32 pixels on its longer side.
-  Pilot glossy = run_pilot_on(make_builtin_scene("cornell_glossy"), settings(48, 24, 1, test_seed(6440)));
+  // Glossy lobes (GGX, roughness 0.3) are measured apart: neither strategy is clearly
+  // better there, and their factor, a ratio of two heavy-tailed error estimates, spreads
+  // (x1/4 to x8 over 20 seeds), far from the diffuse vertices' (x32 to x256).
+  Pilot glossy = run_pilot_on(make_builtin_scene("cornell_glossy"), settings(48, 48, 1, test_seed(6440)));
   INFO(glossy.tuning.note);
-  CHECK(glossy.tuning.note.find("[mis pilot: 32x16, ") == 0);
+  CHECK(glossy.tuning.note.find("[mis pilot: 32x32, ") == 0);
   CHECK(glossy.diffuse >= 4.0f);
-  CHECK(glossy.glossy >= 0.25f);
-  CHECK(glossy.glossy <= 4.0f);
+  CHECK(glossy.glossy >= 1.0f / 16.0f);
+  CHECK(glossy.glossy <= 16.0f);
+  CHECK(glossy.glossy < glossy.diffuse);
 }
 
-TEST_CASE("stage6 pilot: render() hands the pilot's factors to the kernel and its note to the summary; stage5 runs none",
-          "[stage6][stage5]") {
+TEST_CASE("stage6 pilot: render() hands the pilot's factors to the kernel and its note to the summary; stage5 has none",
+          "[stage6]") {
   Scene scene = make_builtin_scene("floor_small_light");
   RenderSettings s = settings(40, 20, 2, test_seed(6450));
   Pilot p = run_pilot_on(scene, s);
@@ -116,9 +119,11 @@ TEST_CASE("stage6 pilot: render() hands the pilot's factors to the kernel and it
   CHECK(r.stage_note.find("at diffuse, x1 at glossy vertices]") != std::string::npos);
   // The pilot is deterministic: a resumed render or a part runs it again and must agree.
   CHECK(run_pilot_on(scene, s).tuning.params == p.tuning.params);
-  // Stages without a step before the render say nothing of one.
-  CHECK(render_on_test_backend(stage5::kernels(), scene, settings(8, 8, 1, 1)).stage_note.empty());
+  // Stages without a step before the render have none, and render() then leaves the note empty.
   CHECK(stage5::kernels().before_render == nullptr);
+  StageKernels no_hook = stage6::kernels();
+  no_hook.before_render = nullptr;
+  CHECK(render_on_test_backend(no_hook, scene, settings(8, 8, 1, 1)).stage_note.empty());
   CHECK(stage6::kernels().before_render != nullptr);
 }
 
@@ -174,9 +179,9 @@ TEST_CASE("stage6 pilot: in a pilot pass the light sample alone and the BSDF sam
   // X_l in the pass's first channel and X_b in its second: each is then an unbiased estimate
   // of the direct light, Lambert's image. An X weighted by its MIS weight would fall short
   // of it (by about 5% for X_l, 95% for X_b at the image's centre). Tested on the image mean
-  // over 16 independent passes (seeds), t-tests Sidak-corrected over the two strategies.
+  // over 32 independent passes (seeds), t-tests Sidak-corrected over the two strategies.
   analytic::FloorLightScene a;
-  const int size = 16, passes = 16;
+  const int size = 32, passes = 32;
   const Scene scene = analytic::make_floor_light(a);
   double want = 0.0;
   for (const glm::dvec3& v : floor_light_image(a, size)) want += luminance(v) / (size * size);
@@ -200,6 +205,6 @@ TEST_CASE("stage6 pilot: in a pilot pass the light sample alone and the BSDF sam
   INFO("want " << want << "; X_l " << mean.x << " +- " << se.x << ", X_b " << mean.y << " +- " << se.y << " (t " << t << ")");
   CHECK(std::abs(mean.x - want) <= t * se.x);
   CHECK(std::abs(mean.y - want) <= t * se.y);
-  CHECK(se.x < 0.01 * want);  // the test resolves a 5% shortfall
-  CHECK(se.y < 0.01 * want);
+  CHECK(t * se.x < 0.05 * want);  // the test resolves a 5% shortfall
+  CHECK(t * se.y < 0.05 * want);
 }

@@ -54,7 +54,7 @@ TEST_CASE("stage6: through a glass slab every sample is Le or 0 (variance Le^2 p
   CHECK(std::abs(measured - variance) < 5.0 * variance_error);
 }
 
-TEST_CASE("stage6: a glass slab of ior 1 is invisible; of ior 1.5 it transmits (1 - R) / (1 + R), under either roulette",
+TEST_CASE("stage6: a glass slab of ior 1 is invisible; of ior 1.5 it transmits (1 - R) / (1 + R)",
           "[stage6][statistical][analytic]") {
   check_glass_slab(stage6::kernels(), 1.0f, test_seed(6600));
   check_glass_slab(stage6::kernels(), 1.5f, test_seed(6610));
