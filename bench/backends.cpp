@@ -15,16 +15,17 @@
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "stage5_mis/kernels.h"
+#include "stage6_variance_aware/kernels.h"
 
 namespace pt::bench {
 
 std::string stage_name(const std::string& stage) {
   static const char* names[] = {"stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect",
-                                "stage5_mis"};
-  for (int i = 0; i < 5; i++) {
+                                "stage5_mis", "stage6_variance_aware"};
+  for (int i = 0; i < 6; i++) {
     if (stage == names[i] || stage == std::to_string(i + 1) || stage == std::string(names[i]).substr(0, 6)) return names[i];
   }
-  throw Error(kExitBadOption, "unknown stage '" + stage + "'; use 1..5 or a program name such as stage2_montecarlo");
+  throw Error(kExitBadOption, "unknown stage '" + stage + "'; use 1..6 or a program name such as stage2_montecarlo");
 }
 
 StageKernels stage_kernels(const std::string& stage) {
@@ -33,7 +34,8 @@ StageKernels stage_kernels(const std::string& stage) {
   if (name == "stage2_montecarlo") return stage2::kernels();
   if (name == "stage3_importance") return stage3::kernels();
   if (name == "stage4_direct_indirect") return stage4::kernels();
-  return stage5::kernels();
+  if (name == "stage5_mis") return stage5::kernels();
+  return stage6::kernels();
 }
 
 Backend& backend_for(const std::string& stage, const std::string& kind) {

@@ -51,7 +51,7 @@ struct Config {
 // One line of the run list: a scene, a stage, a backend.
 struct Run {
   std::string scene;    // builtin NAME or a glTF path
-  std::string stage;    // stage1_raycast ... stage5_mis
+  std::string stage;    // stage1_raycast ... stage6_variance_aware
   std::string backend;  // cpu or gpu
 };
 

@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
                  "against general kernels. CSV files into --out."};
     app.add_option("--runs", runs_path, "the run list: lines 'SCENE STAGES BACKENDS'")->capture_default_str();
     app.add_option("--scene", scenes, "only these scenes of the run list (repeatable)");
-    app.add_option("--stage", stages, "only these stages: 1..5 or program names (repeatable)");
+    app.add_option("--stage", stages, "only these stages: 1..6 or program names (repeatable)");
     app.add_option("--backend", backends, "only these backends: cpu, gpu (repeatable)");
     app.add_option("--section", sections, "error, speed, special, accel, stage (repeatable)")->capture_default_str();
     app.add_option("--size", config.size, "image width and height")->capture_default_str()->check(CLI::Range(1, 4096));

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
                                       .default_spp = 64,
                                       .has_roulette = true,
                                       .default_roulette = pt::kRouletteThroughput,
+                                      .throughput_p = "p = the square root of the path weight, glass's 1/eta^2 "
+                                                      "taken out; drawn before a ray, applied after its emission",
                                       .sees_point_lights = true},
                         stage6::kernels(),
                         {pt::make_cpu_backend, pt::gpu::create_backend, pt::gpu::vulkan_devices}};

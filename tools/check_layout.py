@@ -10,8 +10,10 @@ Nothing in common/ includes labs/, a stage, cpu/ or gpu/; cpu/ and gpu/ do not i
 each other, common/app or a stage. labs/ and the generated kernel_definitions.glsl are
 chosen by the build (cmake/Labs.cmake), never by a file in common/.
 
-Also: a stage folder holds its main.cpp, integrator.glsl and README.md and nothing else
-(the build writes the rest), and the stages' main.cpp files are one program: past the
+Also: a stage folder holds its main.cpp, integrator.glsl and README.md, and besides them only
+its own machinery, which the stage names: kernel files its integrator includes and host files
+its pt_add_stage line in CMakeLists.txt lists (HEADER, SOURCES: stage6's pilot); the build
+writes the rest. And the stages' main.cpp files are one program: past the
 record that names the stage and its kernels, each must read as every other does (the
 steps the reader follows in docs/README.md, "What main.cpp is"). They are written out in
 each stage on purpose, for the reader; this keeps the five copies from drifting apart.
@@ -22,7 +24,7 @@ labs/, tools/, bench/, docs/figures/ or tests/ is longer than MAX_LINES lines (d
 
 And the step past the article stays one step (issue #48): stage5_mis/integrator.glsl is
 stage4's plus MIS, `diff` of the two at most MAX_STEP_LINES changed lines, and a stage's
-own machinery stays in its folder: no file in common/, cpu/ or gpu/ names stage5's pilot.
+own machinery stays in its folder: no file in common/, cpu/ or gpu/ names stage6's MIS pilot.
 
   tools/check_layout.py [--root DIR]   lists each problem; exit 1 if any
 """
@@ -119,6 +121,41 @@ def stage_program(text, stage):
     return "\n".join(includes + lines[marks[0] + 1:])
 
 
+def stage_own_files(root, top):
+    """The files of stage folder `top` that the stage itself names: the ones its
+    integrator.glsl includes (and they in turn), and the HEADER and SOURCES of its
+    pt_add_stage(...) call in CMakeLists.txt."""
+    own = set()
+    pending = ["integrator.glsl"]
+    while pending:
+        path = os.path.join(root, top, pending.pop())
+        if not os.path.exists(path):
+            continue
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            for line in fh:
+                m = INCLUDE.match(line)
+                if m and m.group(1).startswith(top + "/"):
+                    name = m.group(1)[len(top) + 1:]
+                    if name not in own:
+                        own.add(name)
+                        pending.append(name)
+    cmake = os.path.join(root, "CMakeLists.txt")
+    if os.path.exists(cmake):
+        with open(cmake, encoding="utf-8", errors="replace") as fh:
+            m = re.search(r"pt_add_stage\(\s*" + re.escape(top) + r"\b([^)]*)\)", fh.read())
+        if m:
+            words = m.group(1).split()
+            listing = False
+            for word in words:
+                if word in ("HEADER", "SOURCES"):
+                    listing = True
+                elif word.isupper():
+                    listing = False
+                elif listing:
+                    own.add(word)
+    return own
+
+
 def check_stages(root):
     problems = []
     programs = {}
@@ -126,9 +163,10 @@ def check_stages(root):
         folder = os.path.join(root, top)
         if room_of(top + "/x/y") != "stage" or not os.path.isdir(folder):
             continue
-        for name in sorted(set(os.listdir(folder)) - STAGE_FILES):
+        for name in sorted(set(os.listdir(folder)) - STAGE_FILES - stage_own_files(root, top)):
             problems.append(f"{top}/{name}: a stage folder holds only {', '.join(sorted(STAGE_FILES))} "
-                            "(cmake/PtStage.cmake writes the rest into the build folder)")
+                            "and the files the stage names (included by its integrator, or HEADER and SOURCES "
+                            "in its pt_add_stage line); cmake/PtStage.cmake writes the rest into the build folder")
         main_cpp = os.path.join(folder, "main.cpp")
         if os.path.exists(main_cpp):
             with open(main_cpp, encoding="utf-8", errors="replace") as fh:
@@ -149,8 +187,8 @@ def check_stages(root):
     return problems
 
 
-# The step stage4 -> stage5 (the lines `diff` marks with < or >), and the word that stage5's
-# own machinery, its former MIS pilot, must not leave in the shared rooms.
+# The step stage4 -> stage5 (the lines `diff` marks with < or >), and the word that a stage's
+# own machinery, stage6's MIS pilot (once stage5's), must not leave in the shared rooms.
 STEP = ("stage4_direct_indirect/integrator.glsl", "stage5_mis/integrator.glsl")
 MAX_STEP_LINES = 60
 SHARED_ROOMS = ("common", "cpu", "gpu")
@@ -174,8 +212,9 @@ def check_step(root):
                 path = os.path.join(folder, name)
                 with open(path, encoding="utf-8", errors="replace") as fh:
                     if re.search(r"pilot", fh.read(), re.IGNORECASE):
-                        problems.append(f"{os.path.relpath(path, root)}: names the MIS pilot, stage5's own "
-                                        "machinery: it belongs in stage5_mis/, behind a generic hook")
+                        problems.append(f"{os.path.relpath(path, root)}: names the MIS pilot, stage6's own "
+                                        "machinery: it belongs in stage6_variance_aware/, behind the generic hook "
+                                        "(StageKernels::before_render)")
     return problems
 
 

@@ -3,7 +3,8 @@
 of its own, a file in common/ that includes labs/, a stage, cpu/ or gpu/ fails the check,
 as do a lower room including a higher one and a stage including another stage; the
 allowed includes pass. The stage folders: a stage whose main.cpp runs other steps than the
-others', or a folder with a file besides main.cpp, integrator.glsl and README.md, fails.
+others', or a folder with a file besides main.cpp, integrator.glsl, README.md and the files
+the stage names (included by its integrator, or in its pt_add_stage line), fails.
 A source file of over 300 lines in a room of the rule (tests/ included) fails, one of 300
 passes. Also: the project's own tree passes.
 usage: tools/test_check_layout.py   (ctest entry layout_check_catches_wrong_arrows)"""
@@ -98,6 +99,20 @@ def main():
         r = run(extra)
         failed += verdict(r.returncode == 1 and "stage2_montecarlo/cpu_kernel.cpp: a stage folder holds only" in r.stdout,
                           "a stage folder with a file of the build's is caught", r)
+        own = os.path.join(tmp, "own")
+        tree(own, dict(stages, **{"stage2_montecarlo/integrator.glsl": ["stage2_montecarlo/bounce.glsl"],
+                                  "stage2_montecarlo/bounce.glsl": [], "stage2_montecarlo/pilot.cpp": [],
+                                  "stage2_montecarlo/pilot.h": []}))
+        with open(os.path.join(own, "CMakeLists.txt"), "w", encoding="utf-8") as fh:
+            fh.write("pt_add_stage(stage2_montecarlo CPU_GROUPS 1\n  BEFORE_RENDER stage2::f HEADER pilot.h SOURCES pilot.cpp)\n")
+        r = run(own)
+        failed += verdict(r.returncode == 0, "a stage's own files, included by its integrator or named by its "
+                          "pt_add_stage line, pass", r)
+        tree(own, {"stage2_montecarlo/unnamed.glsl": []})
+        r = run(own)
+        failed += verdict(r.returncode == 1 and "stage2_montecarlo/unnamed.glsl: a stage folder holds only" in r.stdout
+                          and "bounce.glsl" not in r.stdout and "pilot.cpp" not in r.stdout,
+                          "a stage file that the stage does not name is caught", r)
         step = os.path.join(tmp, "step")
         tree(step, dict(ALLOWED, **{"stage4_direct_indirect/integrator.glsl": [], "stage5_mis/integrator.glsl": [], "common/render/render.cpp": []}))
         r = run(step)

@@ -131,7 +131,8 @@ std::optional<Options> parse_options(int argc, char** argv, const StageInfo& sta
       ->type_name("[PATH]");
   std::string rr = stage.default_roulette == kRouletteThroughput ? "throughput" : "fixed";
   if (stage.has_roulette) {
-    app.add_option("--rr", rr, "Russian roulette: fixed (the article's p = 1/2) or throughput (p = path weight)")
+    app.add_option("--rr", rr, std::string("Russian roulette: fixed (the article's p = 1/2) or throughput (") +
+                                   stage.throughput_p + ")")
         ->capture_default_str()->check(CLI::IsMember({"fixed", "throughput"}));
     app.add_option("--depth-cap", o.render.depth_cap, "bounces after which a path is stopped and counted (a safety net)")
         ->capture_default_str()->check(CLI::Range(1u, 1000000u));

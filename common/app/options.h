@@ -18,6 +18,7 @@ struct StageInfo {
   std::uint64_t default_spp;
   bool has_roulette = false;        // paths end by Russian roulette (stage2 onwards): --rr
   std::uint32_t default_roulette = 0;  // kRouletteFixed (the article) or kRouletteThroughput
+  const char* throughput_p = "p = path weight";  // --rr's help: what the throughput roulette's p is
   bool sees_point_lights = false;   // light sampling (stage4) sees delta lights
   bool every_surface_emits = false; // stage1: surfaces show their base colour, so no scene is black
 };

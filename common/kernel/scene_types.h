@@ -218,7 +218,7 @@ struct FrameParams {
   float env_sin;
   // What a stage's own step before the render measured, for its kernel to read (the one
   // hook a stage may provide: StageKernels::before_render, common/render/backend.h); zero
-  // for the stages without one. stage6_variance_aware keeps its pilot's findings here.
+  // for the stages without one. stage6_variance_aware keeps its MIS factors here.
   vec4 stage_params;
 };
 

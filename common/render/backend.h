@@ -24,14 +24,14 @@ class Backend;
 // FrameParams::stage_params during the render, and a note for the summary line.
 struct StageTuning {
   glm::vec4 params{0.0f};
-  std::string note;  // e.g. "[mis pilot: 32x32, light pdf x16 at diffuse, x1 at glossy vertices]"
+  std::string note;  // one bracketed phrase for the summary line, or empty
 };
 
-// The one hook a stage may provide (stage6_variance_aware: its pilot): render() calls it on
-// the backend once the scene is set, before the first pass, with the render's params and
-// feature bits and a buffer of at least 32 x 32 pixels it may render small passes into.
-// It must be deterministic: a resumed render or a part calls it again and must render the
-// same samples.
+// The one hook a stage may provide (stage6_variance_aware: a small render that sets its MIS
+// weights): render() calls it on the backend once the scene is set, before the first pass,
+// with the render's params and feature bits and a buffer of the image's size that it may
+// render smaller passes into. It must be deterministic: a resumed render or a part calls it
+// again and must get the same values.
 using BeforeRender = StageTuning (*)(Backend& backend, const FrameParams& params, uint features,
                                      std::span<glm::vec4> buffer);
 

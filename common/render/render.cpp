@@ -103,8 +103,9 @@ RenderResult render(Backend& backend, const Scene& scene, const RenderSettings& 
   const uint features = s.all_features ? kFeatureAll : scene_feature_mask(scene, s.sky);
   try {
     backend.set_scene(scene, features, bvh);
-    // The stage's own step before the render (stage6: its pilot), if it has one. A resumed
-    // render or a part runs it again and gets the same values, so it renders the same samples.
+    // The stage's own step before the render, if it has one (stage6_variance_aware: a small
+    // render that sets its MIS weights). A resumed render or a part runs it again and gets
+    // the same values, so it renders the same samples.
     if (BeforeRender before = backend.before_render()) {
       StageTuning tuning = before(backend, params, features, pass);
       params.stage_params = tuning.params;

@@ -149,7 +149,11 @@ std::shared_ptr<const Environment> make_environment(std::string name, uint width
 }
 
 glm::vec2 environment_turn(const Environment& env) {
-  const double turn = double(env.rotate_degrees) * M_PI / 180.0;
+  // Whole turns first, exactly (fmod is exact), so that 450 is 90 and 1e30 is the turn its
+  // remainder says, not the cosine of a radian count rounded to nothing.
+  double degrees = std::fmod(double(env.rotate_degrees), 360.0);
+  if (degrees < 0.0) degrees += 360.0;  // exact too: -270 is 90
+  const double turn = degrees * M_PI / 180.0;
   return glm::vec2(float(std::cos(turn)), float(std::sin(turn)));
 }
 

@@ -138,28 +138,7 @@ TEST_CASE("wide bvh: coplanar overlaps, copies, one point, one triangle, none, 1
     CHECK(tally.ties > 1000);
   }
 
-  pt::Scene point;
-  point.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  for (int i = 0; i < 100; i++) point.add_triangle({1, 2, 3}, {1, 2, 3}, {1, 2, 3}, 0u);
-  point.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0u);  // something to hit
-  check(point, rng, 300, "at one point");
-
-  pt::Scene one;
-  one.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  one.add_triangle({-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, 0u);
-  check(one, rng, 300, "one triangle");
-
-  pt::Scene none;
-  none.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  check(none, rng, 30, "no triangles");
-
-  pt::Scene copies;  // a grid of quads in one plane, every quad three times: ties everywhere
-  pt::test::add_copied_grid(copies, 10);
-  check(copies, rng, 1000, "copies in a plane", 50);
-
-  pt::Scene spread;  // triangles from 1e-6 to 1e6 in size, at distances to match
-  pt::test::add_spread_triangles(spread, rng, 500);
-  check(spread, rng, 2000, "sizes 1e-6 to 1e6");
+  for (const pt::test::DegenerateScene& d : pt::test::degenerate_scenes(rng)) check(d.scene, rng, d.rays, d.name, d.min_ties);
 }
 
 TEST_CASE("wide bvh: every triangle lands in exactly one leaf block, under boxes of the binary tree", "[bvh]") {

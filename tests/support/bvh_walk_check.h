@@ -131,26 +131,5 @@ void check_coplanar_ties(const pt::Scene& s) {
 // All triangles at one point, one triangle, none, a plane of copies, sizes 1e-6 to 1e6.
 void check_degenerate_scenes() {
   std::mt19937 rng(4242);
-  pt::Scene point;
-  uint m = point.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  for (int i = 0; i < 200; i++) point.add_triangle({1, 2, 3}, {1, 2, 3}, {1, 2, 3}, m);
-  point.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, m);  // something to hit
-  check(point, rng, 500, "at one point");
-
-  pt::Scene one;
-  one.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  one.add_triangle({-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, 0u);
-  check(one, rng, 500, "one triangle");
-
-  pt::Scene none;
-  none.add_material(pt::make_diffuse(glm::vec3(0.5f)));
-  check(none, rng, 50, "no triangles");
-
-  pt::Scene copies;  // a grid of quads in one plane, every quad three times: ties everywhere
-  pt::test::add_copied_grid(copies, 12);
-  check(copies, rng, 2000, "copies in a plane", 100);
-
-  pt::Scene spread;  // triangles from 1e-6 to 1e6 in size, at distances to match
-  pt::test::add_spread_triangles(spread, rng, 600);
-  check(spread, rng, 3000, "sizes 1e-6 to 1e6");
+  for (const pt::test::DegenerateScene& d : pt::test::degenerate_scenes(rng)) check(d.scene, rng, d.rays, d.name, d.min_ties);
 }

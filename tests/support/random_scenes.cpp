@@ -69,4 +69,31 @@ void random_test_ray(const Scene& s, std::mt19937& rng, int r, glm::vec3 center,
   }
 }
 
+std::vector<DegenerateScene> degenerate_scenes(std::mt19937& rng) {
+  std::vector<DegenerateScene> scenes;
+  Scene point;
+  uint m = point.add_material(make_diffuse(glm::vec3(0.5f)));
+  for (int i = 0; i < 200; i++) point.add_triangle({1, 2, 3}, {1, 2, 3}, {1, 2, 3}, m);
+  point.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, m);  // something to hit
+  scenes.push_back({"at one point", std::move(point), 500, 0});
+
+  Scene one;
+  one.add_material(make_diffuse(glm::vec3(0.5f)));
+  one.add_triangle({-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, 0u);
+  scenes.push_back({"one triangle", std::move(one), 500, 0});
+
+  Scene none;
+  none.add_material(make_diffuse(glm::vec3(0.5f)));
+  scenes.push_back({"no triangles", std::move(none), 50, 0});
+
+  Scene copies;  // a grid of quads in one plane, every quad three times: ties everywhere
+  add_copied_grid(copies, 12);
+  scenes.push_back({"copies in a plane", std::move(copies), 2000, 100});
+
+  Scene spread;  // triangles from 1e-6 to 1e6 in size, at distances to match
+  add_spread_triangles(spread, rng, 600);
+  scenes.push_back({"sizes 1e-6 to 1e6", std::move(spread), 3000, 0});
+  return scenes;
+}
+
 }  // namespace pt::test

@@ -2,7 +2,9 @@
 // CPU's wide walk, cpu/wide_bvh.h): the hard cases of a nearest-hit search in one soup.
 #pragma once
 
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "common/scene/scene.h"
 
@@ -25,5 +27,16 @@ void add_spread_triangles(Scene& s, std::mt19937& rng, int count);
 // direction components exactly 0). The direction is not normalised and may be zero.
 void random_test_ray(const Scene& s, std::mt19937& rng, int r, glm::vec3 center, float size, glm::vec3& origin,
                      glm::vec3& dir);
+
+// The degenerate scenes every traversal test runs, with how many rays each gets and how
+// many ties at least those rays must meet: all triangles at one point (and one to hit), one
+// triangle, none, a plane of copies, sizes 1e-6 to 1e6.
+struct DegenerateScene {
+  const char* name;
+  Scene scene;
+  int rays;
+  std::uint64_t min_ties;
+};
+std::vector<DegenerateScene> degenerate_scenes(std::mt19937& rng);
 
 }  // namespace pt::test

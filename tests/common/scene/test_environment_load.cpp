@@ -156,6 +156,21 @@ TEST_CASE("environment tables: the mean luminance of a constant map is its lumin
   }
 }
 
+TEST_CASE("environment turn: whole turns drop out exactly, so a huge --env-rotate is still a turn", "[environment]") {
+  auto turn = [](float degrees) {
+    return pt::environment_turn(*pt::make_environment("flat", 2, 1, std::vector<float>(6, 1.0f), 1.0f, degrees));
+  };
+  CHECK(turn(450.0f) == turn(90.0f));
+  CHECK(turn(-270.0f) == turn(90.0f));
+  CHECK(turn(360.0f * 1024.0f + 30.0f) == turn(30.0f));
+  // 1e30 degrees is a whole number of degrees whose remainder mod 360 is exact in double.
+  const double rest = std::fmod(double(1e30f), 360.0);
+  const glm::vec2 huge = turn(1e30f);
+  CHECK(huge.x == Approx(std::cos(rest * M_PI / 180.0)).margin(1e-6));
+  CHECK(huge.y == Approx(std::sin(rest * M_PI / 180.0)).margin(1e-6));
+  CHECK(glm::length(huge) == Approx(1.0f).epsilon(1e-6));
+}
+
 TEST_CASE("environment loading: .hdr and .exr read top row first, values kept (.hdr to RGBE precision)",
           "[environment]") {
   fs::path dir = pt_test::scratch_dir("pt_env_load");
