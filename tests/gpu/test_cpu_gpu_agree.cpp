@@ -12,6 +12,7 @@
 #include "stage3_importance/kernels.h"
 #include "stage4_direct_indirect/kernels.h"
 #include "stage5_mis/kernels.h"
+#include "tests/support/image_checks.h"
 #include "tests/support/shading_scenes.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/gltf_textured.h"
@@ -23,21 +24,6 @@ using namespace pt;
 using namespace pt::test;
 
 namespace {
-
-// Fraction of pixels whose every channel agrees within a relative `relative` (1e-5 unless
-// said; or 1e-6 absolute).
-double agreeing_fraction(const Film& a, const Film& b, double relative = 1e-5) {
-  int agree = 0;
-  for (int y = 0; y < a.height(); y++) {
-    for (int x = 0; x < a.width(); x++) {
-      glm::dvec3 u = a.mean(x, y), v = b.mean(x, y);
-      bool same = true;
-      for (int c = 0; c < 3; c++) same = same && std::abs(u[c] - v[c]) <= 1e-6 + relative * std::abs(u[c]);
-      agree += same;
-    }
-  }
-  return double(agree) / (double(a.width()) * a.height());
-}
 
 // Renders each scene on both backends with the same seed and spp and compares.
 void check_agreement(const StageKernels& kernels, std::initializer_list<const char*> scenes, RenderSettings s) {

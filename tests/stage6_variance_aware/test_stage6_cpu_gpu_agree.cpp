@@ -4,33 +4,13 @@
 // them the two images of one seed agree to float rounding, the pilot in play and through glass.
 #include <catch2/catch.hpp>
 
-#include <cmath>
-
 #include "common/scene/scene_loading.h"
 #include "stage6_variance_aware/kernels.h"
+#include "tests/support/image_checks.h"
 #include "tests/support/test_render.h"
 
 using namespace pt;
 using namespace pt::test;
-
-namespace {
-
-// Fraction of pixels whose every channel agrees within 1e-5 relative or 1e-6 absolute (as
-// tests/gpu/test_cpu_gpu_agree.cpp's agreeing_fraction).
-double agreeing_fraction(const Film& a, const Film& b) {
-  int agree = 0;
-  for (int y = 0; y < a.height(); y++) {
-    for (int x = 0; x < a.width(); x++) {
-      glm::dvec3 u = a.mean(x, y), v = b.mean(x, y);
-      bool same = true;
-      for (int c = 0; c < 3; c++) same = same && std::abs(u[c] - v[c]) <= 1e-6 + 1e-5 * std::abs(u[c]);
-      agree += same;
-    }
-  }
-  return double(agree) / (double(a.width()) * a.height());
-}
-
-}  // namespace
 
 TEST_CASE("stage6: the MIS pilot chooses the same factors on the CPU and the GPU", "[stage6][gpu]") {
   for (const char* name : {"floor_large_light", "floor_small_light", "furnace", "cornell", "cornell_glossy"}) {

@@ -158,4 +158,17 @@ std::uint32_t max_ulps(const std::vector<float>& a, const std::vector<float>& b)
   return worst;
 }
 
+double agreeing_fraction(const Film& a, const Film& b, double relative) {
+  int agree = 0;
+  for (int y = 0; y < a.height(); y++) {
+    for (int x = 0; x < a.width(); x++) {
+      glm::dvec3 u = a.mean(x, y), v = b.mean(x, y);
+      bool same = true;
+      for (int c = 0; c < 3; c++) same = same && std::abs(u[c] - v[c]) <= 1e-6 + relative * std::abs(u[c]);
+      agree += same;
+    }
+  }
+  return double(agree) / (double(a.width()) * a.height());
+}
+
 }  // namespace pt::test

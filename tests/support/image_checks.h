@@ -63,4 +63,8 @@ double student_two_sided_quantile(double alpha, int dof);
 std::uint32_t ulps(float a, float b);
 std::uint32_t max_ulps(const std::vector<float>& a, const std::vector<float>& b);
 
+// Two renders that should agree to rounding (CPU and GPU, BVH and none): the fraction of
+// pixels whose every channel agrees within `relative` (1e-5 unless said) or 1e-6 absolute.
+double agreeing_fraction(const Film& a, const Film& b, double relative = 1e-5);
+
 }  // namespace pt::test
