@@ -50,9 +50,10 @@ vec3 Li(Ray ray) {
     bool in_full = depth == 0u || after_delta;
     if (hit.kind == kPrimNone) {
       // The sky is a light too: weighed against sampling it as one.
+      vec3 sky = beta * sky_radiance(ray.dir);
       float w = in_full ? 1.0f : power_heuristic(bsdf_pdf, from_scale * sky_light_pdf(from_n, ray.dir));
-      L += beta * sky_radiance(ray.dir) * w;
-      pilot = mis_pilot_found(pilot, beta * sky_radiance(ray.dir));
+      L += sky * w;
+      pilot = mis_pilot_found(pilot, sky);
       break;
     }
     Surface surface = surface_at(ray, hit);

@@ -32,15 +32,7 @@ TEST_CASE("stage4: furnace sphere whose inside emits: Le / (1 - albedo) at albed
 
 TEST_CASE("stage4: the furnace with one bounce only is Le (1 + albedo): emission neither lost nor doubled",
           "[stage4][statistical][analytic]") {
-  for (float albedo : {0.5f, 0.8f}) {
-    analytic::FurnaceScene f;
-    f.albedo = albedo;
-    RenderSettings s = settings(16, 16, 256, test_seed(2175));
-    s.roulette = kRouletteThroughput;
-    s.depth_cap = 1;  // the camera hit and its direct light, nothing after
-    INFO("albedo " << albedo);
-    check_scene(stage4::kernels(), analytic::make_furnace(f), ExpectedImage(256, glm::dvec3(f.emission * (1.0 + albedo))), s);
-  }
+  check_one_bounce_furnace(stage4::kernels(), test_seed(2175));
 }
 
 TEST_CASE("stage4: a diffuse sphere under a uniform sky is albedo x sky", "[stage4][statistical][analytic]") {

@@ -35,15 +35,7 @@ TEST_CASE("stage5: the furnace with one bounce only is Le (1 + albedo): the emis
           "[stage5][statistical][analytic]") {
   // The depth cap ends the path after the emission its last ray found: the camera hit's Le,
   // and its direct light from both strategies, weighted to sum to albedo Le.
-  for (float albedo : {0.5f, 0.8f}) {
-    analytic::FurnaceScene f;
-    f.albedo = albedo;
-    RenderSettings s = settings(16, 16, 256, test_seed(5175));
-    s.roulette = kRouletteThroughput;
-    s.depth_cap = 1;
-    INFO("albedo " << albedo);
-    check_scene(stage5::kernels(), analytic::make_furnace(f), ExpectedImage(256, glm::dvec3(f.emission * (1.0 + albedo))), s);
-  }
+  check_one_bounce_furnace(stage5::kernels(), test_seed(5175));
 }
 
 TEST_CASE("stage5: the box furnace with every bounce is Le / (1 - albedo) at albedo 0.5 and 0.8 (stage4's light sampling "

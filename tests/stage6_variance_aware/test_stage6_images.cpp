@@ -31,15 +31,7 @@ TEST_CASE("stage6: the box furnace with every bounce is Le / (1 - albedo) = 2 at
 TEST_CASE("stage6: the furnace with one bounce only is Le (1 + albedo): the depth cap ends the path after the "
           "emission its last ray found",
           "[stage6][statistical][analytic]") {
-  for (float albedo : {0.5f, 0.8f}) {
-    analytic::FurnaceScene f;
-    f.albedo = albedo;
-    RenderSettings s = settings(16, 16, 256, test_seed(6175));
-    s.roulette = kRouletteThroughput;
-    s.depth_cap = 1;
-    INFO("albedo " << albedo);
-    check_scene(stage6::kernels(), analytic::make_furnace(f), ExpectedImage(256, glm::dvec3(f.emission * (1.0 + albedo))), s);
-  }
+  check_one_bounce_furnace(stage6::kernels(), test_seed(6175));
 }
 
 TEST_CASE("stage6: furnace sphere whose inside emits: Le / (1 - albedo) at albedo 0.8", "[stage6][statistical][analytic]") {

@@ -43,6 +43,18 @@ void check_furnace_sphere(const StageKernels& kernels, float albedo, std::uint32
   check_scene(kernels, analytic::make_furnace_sphere(f), ExpectedImage(16 * 16, glm::dvec3(want)), s);
 }
 
+void check_one_bounce_furnace(const StageKernels& kernels, std::uint32_t seed) {
+  for (float albedo : {0.5f, 0.8f}) {
+    analytic::FurnaceScene f;
+    f.albedo = albedo;
+    RenderSettings s = settings(16, 16, 256, seed);
+    s.roulette = kRouletteThroughput;
+    s.depth_cap = 1;  // the camera hit and its direct light, nothing after
+    INFO("albedo " << albedo);
+    check_scene(kernels, analytic::make_furnace(f), ExpectedImage(16 * 16, glm::dvec3(f.emission * (1.0 + albedo))), s);
+  }
+}
+
 void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed) {
   const int size = 24;
   glm::dvec3 sky(0.5, 1.0, 2.0), albedo(analytic::SphereScene().color);

@@ -22,6 +22,10 @@ void check_scene(const StageKernels& kernels, const Scene& scene, const Expected
 void check_furnace(const StageKernels& kernels, float albedo, std::uint32_t roulette, std::uint32_t seed);
 // The spherical furnace of the given albedo, emission 1: every pixel Le / (1 - albedo).
 void check_furnace_sphere(const StageKernels& kernels, float albedo, std::uint32_t seed);
+// The furnace box with one bounce only (depth cap 1), albedo 0.5 and 0.8, emission 1: every
+// pixel Le (1 + albedo), the camera hit's emission and its direct light, neither lost nor
+// doubled (stages 4 to 6, whose direct light comes from light samples).
+void check_one_bounce_furnace(const StageKernels& kernels, std::uint32_t seed);
 // A diffuse sphere under a uniform sky: albedo x sky on it, the sky elsewhere.
 void check_sky_sphere(const StageKernels& kernels, std::uint32_t seed);
 // The closed-form image of the floor under the square (or triangle) light at size x size.
