@@ -140,7 +140,8 @@ def main(argv):
            "lab_stamp": lab_stamp,
            "cmake": cmake, "target": setup.get("target", TEST_TARGET),
            "test_bin": os.path.join(build, "bin", setup.get("target", TEST_TARGET)),
-           "specs": setup["specs"], "tests": setup["tests"], "sandbox": box, "references": references,
+           "specs": setup["specs"], "tests": setup["tests"], "by_file": setup.get("by_file"),
+           "durations": os.path.join(a.work, "test_durations.json"), "sandbox": box, "references": references,
            "hints": read_hints(src, a.lab),
            "on_timeout": finder(lab_functions(original.decode(errors="replace")), {setup.get("target", TEST_TARGET)} | STAGES)}
     print(f"grade_lab: set up in {setup_s:.0f} s ({setup_cpu:.0f} s CPU); {len(ctx['tests'])} tests per submission, "

@@ -1,8 +1,10 @@
 """The quick part of tools/test_grade_lab.py (--fast, ctest entry grade_lab_fast; tooling for
 teachers, not a part of the article): bad usage, no bubblewrap, the source check, the
-sandbox's walls, the report, the lab pages' hint tables, the CSV's quoting, the rebuilds."""
+sandbox's walls, the report, the tests' shards, the lab pages' hint tables, the CSV's quoting,
+the rebuilds."""
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -169,6 +171,39 @@ def rebuilt_outputs(tmp):
     expect(dependents(build, lab) == set(outputs), "dependents() is what put_lab_file deletes")
 
 
+def shard_checks(pt_tests):
+    """The shards a submission's tests run in (grading/shards.py): the spec's terms, a split of
+    about equal time, the reports merged in the one run's order; and, with the real pt_tests,
+    that lab 2's tests listed file by file are its tests, each once."""
+    from grading.lab_tests import read_report, test_names
+    from grading.shards import merge_reports, plan, shard_specs, spec_terms, tests_by_file
+    spec = '[stage2]~[ggx]~"sampling: a mixed, material*",[sampling]~[ggx]'
+    expect(spec_terms(spec) == ['[stage2]~[ggx]~"sampling: a mixed, material*"', "[sampling]~[ggx]"],
+           "a spec's terms split at the commas outside quotes")
+    expect(shard_specs([spec], ["f", "g"])[0].count("[#") == 4, "a shard's spec is each term with each file's tag")
+    by_file = {"a": ["a1", "a2"], "b": ["b1"], "c": ["c1"], "d": ["d1", "d2", "d3"]}
+    groups = plan(by_file, {"a1": 7.0, "a2": 4.0, "b1": 6.0, "c1": 1.0, "d1": 1.0, "d2": 1.0}, 2)
+    expect(sorted(groups) == [["a", "c"], ["b", "d"]], "the files split by their tests' time, unknown tests at the mean",
+           repr(groups))
+    expect(plan(by_file, {}, 8) == [["d"], ["a"], ["b"], ["c"]], "no more shards than files; before any time, a test counts 1",
+           repr(plan(by_file, {}, 8)))
+    one = ('<?xml version="1.0" encoding="UTF-8"?>\n<Catch name="t">\n  <Group name="t">\n'
+           '    <TestCase name="{}" tags="[x]">\n      <OverallResult success="true" durationInSeconds="1.5"/>\n'
+           '    </TestCase>\n  </Group>\n</Catch>\n')
+    rep = merge_reports([read_report(one.format("b1").encode(), ["b1"]), read_report(one.format("a1").encode(), ["a1"])],
+                        ["a1", "b1"])
+    expect([c[0] for c in rep.cases] == ["a1", "b1"] and rep.whole and rep.durations == {"a1": 1.5, "b1": 1.5},
+           "the shards' reports merge in the one run's order, with each test's seconds", repr(rep.cases))
+    if pt_tests:
+        specs = ['[stage2]~[ggx]~[energy]~"sampling: a mixed material*"~[compare]~[mutants],[sampling]~[ggx]']
+        files = sorted(set(re.findall(r"\[#(\w+)\]", subprocess.run([pt_tests, "-#", "--list-tags"] + specs,
+                                                                   capture_output=True, text=True).stdout)))
+        listed = sorted(n for names in tests_by_file(pt_tests, specs, files).values() for n in names)
+        names = sorted(test_names(os.path.dirname(os.path.dirname(pt_tests)), specs, os.path.basename(pt_tests)))
+        expect(len(names) > 10 and listed == names, "lab 2's tests listed file by file are its tests, each once",
+               f"{len(listed)} listed, {len(names)} tests")
+
+
 def fast(pt_tests):
     sys.path.insert(0, HERE)
     with tempfile.TemporaryDirectory(prefix="grade_lab_fast_") as tmp:
@@ -177,6 +212,7 @@ def fast(pt_tests):
         no_sandbox_refused(tmp)
         source_checks(tmp)
         report_checks()
+        shard_checks(pt_tests)
         hint_tables(pt_tests)
         csv_quoting(tmp)
         sealed = sandbox_checks(tmp)

@@ -112,6 +112,7 @@ class Report:
 
     def __init__(self):
         self.cases, self.running, self.whole, self.problem = [], None, False, None
+        self.durations = {}  # seconds per finished test, where Catch2 gave them (-d yes)
 
 
 def read_report(data, expected):
@@ -143,6 +144,12 @@ def read_report(data, expected):
                     result = el.find("OverallResult")
                     ok = result is not None and result.get("success") == "true"
                     rep.cases.append((el.get("name"), ok, "" if ok else failure_reason(el)))
+                    seconds = result.get("durationInSeconds") if result is not None else None
+                    if seconds is not None:
+                        try:
+                            rep.durations[el.get("name")] = float(seconds)
+                        except ValueError:
+                            pass
                     rep.running = None
         rep.whole = ended
     except ET.ParseError as e:

@@ -1,12 +1,15 @@
 """The reports of a grading run, for tools/grade_lab.py (grading a class's lab submissions;
 tooling for teachers, not a part of the article): OUT/logs/, emptied before the run, which
-then holds each student's build log, test log and Catch2 XML; OUT/grades.csv, one row per
+then holds each student's build log, test log, Catch2 XML and the tests' pictures; OUT/grades.csv, one row per
 student; OUT/grades.xml, JUnit, one testcase per student (FAIL a failure, the other verdicts
 but PASS an error)."""
 import csv
 import os
+import shutil
 import time
 from xml.sax.saxutils import escape, quoteattr
+
+from .sandbox import MiB
 
 
 def fresh_logs(out):
@@ -59,3 +62,27 @@ def write_reports(out, lab, grades, elapsed):
     """OUT/grades.csv and OUT/grades.xml for the grades so far."""
     write_csv(out, grades)
     write_junit(out, lab, grades, elapsed)
+
+
+def folder_size(path):
+    total = 0
+    for root, _, files in os.walk(path):
+        for f in files:
+            try:
+                total += os.lstat(os.path.join(root, f)).st_size
+            except OSError:
+                pass
+    return total
+
+
+def keep_pictures(run, logs, name):
+    """The tests' pictures (PNG files up to 4 MB) copied to logs/NAME.pictures/."""
+    kept = 0
+    for root, _, files in os.walk(run):
+        for f in files:
+            path = os.path.join(root, f)
+            if f.endswith(".png") and not os.path.islink(path) and os.path.getsize(path) <= 4 * MiB:
+                os.makedirs(os.path.join(logs, f"{name}.pictures"), exist_ok=True)
+                shutil.copyfile(path, os.path.join(logs, f"{name}.pictures", f))
+                kept += 1
+    return kept

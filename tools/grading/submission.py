@@ -10,11 +10,14 @@ import os
 import re
 import shutil
 import sys
+from concurrent.futures import ThreadPoolExecutor
 
 from . import BUILD_TIMEOUT, die
 from .hints import sentence, suspect_for
 from .lab_tests import CONVENTION, read_report, short, signal_name
 from .sandbox import BUILD_LIMITS, FOLDER_CAP, MiB, TEST_LIMITS
+from .reports import folder_size, keep_pictures
+from .shards import merge_reports, merge_results, plan, read_durations, record_durations, shard_specs
 from .source_check import check_source
 from .depends import put_lab_file
 from .glsl_check import glsl_check
@@ -171,17 +174,6 @@ def glsl_compiles(g, ctx, build_log):
     return False
 
 
-def folder_size(path):
-    total = 0
-    for root, _, files in os.walk(path):
-        for f in files:
-            try:
-                total += os.lstat(os.path.join(root, f)).st_size
-            except OSError:
-                pass
-    return total
-
-
 def fresh_run_folder(g, ctx):
     """WORK/run/NAME, empty: the one folder the tests may write (their pictures)."""
     run = os.path.join(ctx["work"], "run", g.name)
@@ -191,40 +183,40 @@ def fresh_run_folder(g, ctx):
     return run
 
 
-def keep_pictures(run, logs, name):
-    """The tests' pictures (PNG files up to 4 MB) copied to logs/NAME.pictures/."""
-    kept = 0
-    for root, _, files in os.walk(run):
-        for f in files:
-            path = os.path.join(root, f)
-            if f.endswith(".png") and not os.path.islink(path) and os.path.getsize(path) <= 4 * MiB:
-                os.makedirs(os.path.join(logs, f"{name}.pictures"), exist_ok=True)
-                shutil.copyfile(path, os.path.join(logs, f"{name}.pictures", f))
-                kept += 1
-    return kept
-
-
 def run_tests(g, ctx):
     """Runs the lab's tests on g's build in the sandbox (the build read-only, the held-back
-    tests' sources hidden, WORK/run/NAME the only folder it may write) and judges them."""
-    box = ctx["sandbox"]
+    tests' sources hidden, WORK/run/NAME the only folder it may write), as --jobs shards side
+    by side (shards.py), and judges them."""
+    box, by_file = ctx["sandbox"], ctx.get("by_file") or {}
     run = fresh_run_folder(g, ctx)
-    cmd = [ctx["test_bin"], "-#", "-r", "xml", "-o", "{report}"] + ctx["specs"]
     env = {"PT_TEST_PICTURES": os.path.join(run, "test_pictures")}
-    r = box.run(cmd, run, [run], [ctx["src"], ctx["build"]], box.hidden_in_tests, TEST_LIMITS,
-                ctx["args"].timeout, env=env, report=True, on_timeout=ctx.get("on_timeout"))
+    groups = plan(by_file, read_durations(ctx["durations"]), ctx["args"].jobs) if by_file else [None]
+
+    def shard(files):
+        specs = ctx["specs"] if files is None else shard_specs(ctx["specs"], files)
+        cmd = [ctx["test_bin"], "-#", "-d", "yes", "-r", "xml", "-o", "{report}"] + specs
+        return box.run(cmd, run, [run], [ctx["src"], ctx["build"]], box.hidden_in_tests, TEST_LIMITS,
+                       ctx["args"].timeout, env=env, report=True, on_timeout=ctx.get("on_timeout"))
+
+    with ThreadPoolExecutor(len(groups)) as pool:
+        results = list(pool.map(shard, groups))
+    reports = [read_report(r.report, ctx["tests"] if files is None else [n for f in files for n in by_file[f]])
+               for r, files in zip(results, groups)]
+    r, rep = merge_results(results), merge_reports(reports, ctx["tests"])
     g.test_s, g.test_cpu = r.seconds, r.cpu_seconds
     write_log(os.path.join(ctx["logs"], f"{g.name}.tests.log"), r.stdout, r.stderr)
-    write_log(os.path.join(ctx["logs"], f"{g.name}.tests.xml"), r.report)
+    for k, one in enumerate(results, 1):  # NAME.tests.xml, or NAME.tests.K.xml for shard K of several
+        write_log(os.path.join(ctx["logs"], f"{g.name}.tests{'' if len(results) == 1 else f'.{k}'}.xml"), one.report)
     written = folder_size(run)
     keep_pictures(run, ctx["logs"], g.name)
     shutil.rmtree(run, ignore_errors=True)
-    judge(g, ctx, r, written)
+    judge(g, ctx, r, rep, written)
+    if g.verdict == "PASS":
+        record_durations(ctx["durations"], rep.durations)
 
 
-def judge(g, ctx, r, written):
-    """g's verdict from the sealed run of its tests."""
-    rep = read_report(r.report, ctx["tests"])
+def judge(g, ctx, r, rep, written):
+    """g's verdict from the sealed run of its tests (r: how it ended; rep: its report)."""
     g.total = len(ctx["tests"])
     g.passed = sum(1 for _, ok, _ in rep.cases if ok)
     died = (r.rc < 0 or r.rc > 128) and not rep.whole

@@ -16,6 +16,7 @@ import subprocess
 import sys
 
 from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die
+from .shards import tests_by_file
 from .lab_tests import lab_specs, tag_specs, test_names
 from .depends import delete_dependents
 from .sandbox import BUILD_LIMITS, NOBODY
@@ -154,7 +155,7 @@ def build_is_new(build, a):
 
 # The setup's format: a WORK/setup.json of another one (an older grader's build, configured
 # without PT_LAB_GRADING) is built again.
-SETUP_FORMAT = 2
+SETUP_FORMAT = 3  # 3: "by_file", the lab's tests by test file (shards.py)
 
 
 def kept_setup(stamp, lab, fresh, changed):
@@ -228,9 +229,14 @@ def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
         if not needed or sorted(needed) == sorted(files):
             break
         target, tags, files = configure(a, box, cmake, src, build, setup_log, needed)
-    setup = {"lab": a.lab, "format": SETUP_FORMAT, "target": target, "specs": specs, "tests": tests}
-    if not setup["tests"]:
+    if not tests:
         die(f"lab {a.lab}'s specs {specs} select no test of {target}", 1)
+    # The tests by file, for the shards a submission's tests run in (shards.py); none when
+    # the files' lists do not hold each test once (then one run holds them all).
+    by_file = tests_by_file(os.path.join(build, "bin", target), specs, test_files(build, specs, target))
+    if sorted(n for names in by_file.values() for n in names) != sorted(tests):
+        by_file = {}
+    setup = {"lab": a.lab, "format": SETUP_FORMAT, "target": target, "specs": specs, "tests": tests, "by_file": by_file}
     with open(stamp, "w", encoding="utf-8") as fh:
         json.dump(setup, fh, indent=1)
     return setup
