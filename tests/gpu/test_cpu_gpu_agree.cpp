@@ -33,6 +33,7 @@ void check_agreement(const StageKernels& kernels, std::initializer_list<const ch
     RenderResult gpu = render_on("gpu", kernels, scene, s);
     INFO(kernels.name << ", scene " << name);
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
+    CHECK(agreeing_squares_fraction(cpu.film, gpu.film) >= 0.999);
   }
 }
 
@@ -81,6 +82,7 @@ TEST_CASE("stage1, stage2: CPU and GPU agree when the triangles do not fit the u
     RenderResult gpu = render_on("gpu", kernels, scene, s);
     INFO(kernels.name);
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
+    CHECK(agreeing_squares_fraction(cpu.film, gpu.film) >= 0.999);
   }
 }
 
@@ -114,6 +116,7 @@ TEST_CASE("every stage: the GPU's image with the BVH is its image without, and a
     RenderResult gpu = render_on("gpu", kernels, cornell, s);
     INFO(kernels.name);
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
+    CHECK(agreeing_squares_fraction(cpu.film, gpu.film) >= 0.999);
   }
 }
 
@@ -137,6 +140,7 @@ TEST_CASE("stages 1-4: CPU and GPU agree to rounding through the BVH of a 100k-t
     INFO(kernels.name << ": " << scene.triangles.size() << " triangles");
     REQUIRE(gpu.device_error.empty());
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
+    CHECK(agreeing_squares_fraction(cpu.film, gpu.film) >= 0.999);
   }
 }
 
@@ -163,6 +167,7 @@ TEST_CASE("glTF material: CPU and GPU images of the same seed agree to rounding"
     RenderResult gpu = render_on("gpu", kernels, scene, s);
     INFO(kernels.name);
     CHECK(agreeing_fraction(cpu.film, gpu.film) >= 0.999);
+    CHECK(agreeing_squares_fraction(cpu.film, gpu.film) >= 0.999);
   }
 }
 

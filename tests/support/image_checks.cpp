@@ -179,4 +179,13 @@ double agreeing_fraction(const Film& a, const Film& b, double relative) {
   return double(agree) / (double(a.width()) * a.height());
 }
 
+double agreeing_squares_fraction(const Film& a, const Film& b, double relative) {
+  const std::vector<double>&u = a.sums(), &v = b.sums();
+  std::size_t agree = 0, pixels = u.size() / 4;
+  for (std::size_t i = 0; i < pixels && u.size() == v.size(); i++) {
+    agree += std::abs(u[4 * i + 3] - v[4 * i + 3]) <= 1e-6 + relative * std::abs(u[4 * i + 3]);
+  }
+  return double(agree) / double(std::max<std::size_t>(pixels, 1));
+}
+
 }  // namespace pt::test

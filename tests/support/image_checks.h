@@ -66,5 +66,9 @@ std::uint32_t max_ulps(const std::vector<float>& a, const std::vector<float>& b)
 // Two renders that should agree to rounding (CPU and GPU, BVH and none): the fraction of
 // pixels whose every channel agrees within `relative` (1e-5 unless said) or 1e-6 absolute.
 double agreeing_fraction(const Film& a, const Film& b, double relative = 1e-5);
+// The same for each pixel's sum of squared sample luminances (Film::sums()'s fourth value),
+// from which the per-pixel error the summary prints is estimated: the kernels' own
+// kPassRootSumSquares, which the tests of that estimate's honesty run on the CPU only.
+double agreeing_squares_fraction(const Film& a, const Film& b, double relative = 1e-5);
 
 }  // namespace pt::test
