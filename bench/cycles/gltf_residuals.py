@@ -101,6 +101,9 @@ EXPERIMENTS = [  # in the order run, the most telling first
     ("01_principled_material", "control_both_nearest_mikktspace",
      "Lambert control, both NEAREST, stage5 reads Blender's MikkTSpace tangents (TANGENT exported)",
      ["--lambert", "--interpolation", "Closest"], ("tangents:nearest+lambert", nearest_samplers)),
+    ("01_principled_material", "control_both_nearest_no_fold",
+     "Lambert control, both NEAREST, stage5 built without the shading normals' fold (bench build, PT_BENCH_NO_FOLD)",
+     ["--lambert", "--interpolation", "Closest"], ("nearest+lambert", nearest_samplers), "no_fold"),
 ]
 # The stage5 file of an experiment whose suffix starts with "tangents:" is the file Blender exports
 # with its MikkTSpace tangents (export_tangents=True) instead of the baseline's export.
