@@ -108,6 +108,7 @@ def prepare(entry, work, blender, log):
             shutil.copy(os.path.join(REPO, extra), dest_dir)
         cmd = [blender, "-b", "--factory-startup", blend, "--python",
                os.path.join(REPO, "bench", "gltf_real", "export_blend.py"), "--", "--out", out]
+        cmd += ["--tangents"] if entry.get("export_tangents") else []
         r = subprocess.run(cmd, capture_output=True, text=True)
         if r.returncode != 0 or not os.path.exists(out):
             raise RuntimeError(f"export of {src} failed: {r.stderr.strip()[-400:]}")

@@ -20,6 +20,7 @@ import csv
 import json
 import os
 import shutil
+import subprocess
 import sys
 
 from compare_gltf import compare, log, region_stats, render_pair, repo_path
@@ -91,10 +92,44 @@ EXPERIMENTS = [  # in the order run, the most telling first
     ("14_transmission", "control", "the Lambert control", ["--lambert"], "lambert"),
     ("04_lights", "cycles_specular0", "Cycles' Principled Specular 0", ["--set-input", "Specular=0"], None),
     ("04_lights", "control", "the Lambert control", ["--lambert"], "lambert"),
+    ("14_transmission", "no_transmission_specular0", "transmission 0 in both, Cycles' Principled Specular 0",
+     ["--set-input", "Transmission=0", "--set-input", "Specular=0"], ("notransmission", no_transmission)),
+    ("spheres", "control", "the Lambert control", ["--lambert"], "lambert"),
+    ("05_metallic_sphere_light", "stage5_separable_masking",
+     "stage5 built with Cycles 3.4's separable masking G1(wo) G1(wi) (bench build, PT_BENCH_SEPARABLE_MASKING)",
+     [], None, "separable_masking"),
+    ("01_principled_material", "control_both_nearest_mikktspace",
+     "Lambert control, both NEAREST, stage5 reads Blender's MikkTSpace tangents (TANGENT exported)",
+     ["--lambert", "--interpolation", "Closest"], ("tangents:nearest+lambert", nearest_samplers)),
+    ("01_principled_material", "control_both_nearest_no_fold",
+     "Lambert control, both NEAREST, stage5 built without the shading normals' fold (bench build, PT_BENCH_NO_FOLD)",
+     ["--lambert", "--interpolation", "Closest"], ("nearest+lambert", nearest_samplers), "no_fold"),
 ]
+# The stage5 file of an experiment whose suffix starts with "tangents:" is the file Blender exports
+# with its MikkTSpace tangents (export_tangents=True) instead of the baseline's export.
+
+# Experiments with a sixth field render with a bench-only build of stage5 (stage5_variant()): the
+# compile definition PT_BENCH_<NAME> switches one formula in common/kernel; the default build never
+# sets it.
 
 COLUMNS = ["id", "experiment", "what", "size", "spp", "mean_cycles", "mean_stage5", "mean_ratio", "mean_noise",
            "worst_region", "worst_region_index", "worst_region_noise", "regions", "cycles_regions"]
+
+
+def stage5_variant(args, name):
+    """stage5_mis built with -DPT_BENCH_<NAME> (CPU kernel, one variant) in build-bench-<name>."""
+    build = repo_path(f"build-bench-{name}")
+    flag = f"-DPT_BENCH_{name.upper()}=1"
+    for cmd in (["cmake", "-S", repo_path("."), "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DPT_CPU_GENERAL_ONLY=ON",
+                 f"-DCMAKE_CXX_FLAGS={flag}"] + (["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"] if shutil.which("ccache") else []),
+                ["nice", "cmake", "--build", build, f"-j{args.threads}", "--target", "stage5_mis"]):
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"building stage5 with {flag} failed: {r.stderr.strip()[-400:]}")
+    return os.path.join(build, "bin", "stage5_mis")
+
+
+SPLITS = [("file", "cycles_specular0", None), ("no_transmission", "no_transmission_specular0", "no_transmission")]
 
 
 def splits(rows, baseline_csv):
@@ -103,15 +138,17 @@ def splits(rows, baseline_csv):
     baseline's ratio: Principled's diffuse over Lambert (Cycles, Specular 0 / Cycles' control),
     Principled's specular layer (Cycles / Cycles with Specular 0, from the ratios of stage5 as is to
     each) and stage5's 1 - F weight with its metals (stage5 / stage5's control). The control takes
-    transmission out too, so a transmissive file's factors hold its transmission as well."""
+    transmission out too, so a transmissive file's factors hold its transmission as well; where the
+    file also has no_transmission rows, a second split (baseline no_transmission) leaves it out."""
     with open(baseline_csv) as f:
         baselines = {r["id"]: r for r in csv.DictReader(f)}
     out = []
-    for file_id in sorted({r["id"] for r in rows}):
+    for file_id, (variant, spec0, base) in [(f, v) for f in sorted({r["id"] for r in rows}) for v in SPLITS]:
         mine = {r["experiment"]: r for r in rows if r["id"] == file_id}
-        if "cycles_specular0" not in mine or "control" not in mine or file_id not in baselines:
+        b = baselines.get(file_id) if base is None else mine.get(base)
+        if spec0 not in mine or "control" not in mine or b is None:
             continue
-        s0, c, b = mine["cycles_specular0"], mine["control"], baselines[file_id]
+        s0, c = mine[spec0], mine["control"]
         worst = int(b["worst_region_index"])
         for region in ("image", worst):
             if region == "image":
@@ -121,7 +158,7 @@ def splits(rows, baseline_csv):
                 cs0, cc = (float(x[worst]) for x in (s0["cycles_regions"].split(), c["cycles_regions"].split()))
                 rs0, rc, rb = (float(x[worst]) for x in (s0["regions"].split(), c["regions"].split(),
                                                          b["regions"].split()))
-            out.append({"id": file_id, "region": region, "baseline_ratio": f"{rb:.4f}",
+            out.append({"id": file_id, "baseline": variant, "region": region, "baseline_ratio": f"{rb:.4f}",
                         "principled_diffuse": f"{cs0 / cc:.4f}", "principled_specular": f"{rs0 / rb:.4f}",
                         "stage5_fresnel": f"{rs0 * cs0 / (rc * cc):.4f}"})
     return out
@@ -153,13 +190,17 @@ def main():
     if os.path.exists(csv_path):  # an earlier run's rows stay unless an experiment runs again
         with open(csv_path) as f:
             rows = list(csv.DictReader(f))
-    for file_id, name, what, flags, stage5_file in EXPERIMENTS:
+    for file_id, name, what, flags, stage5_file, *variant in EXPERIMENTS:
         if (only and file_id not in only) or (args.experiments and name not in args.experiments.split(",")):
             continue
         entry = manifest[file_id]
         if file_id not in prepared:
             prepared[file_id] = prepare(entry, os.path.join(out_dir, "files"), args.blender, log)
         scene = prepared[file_id]
+        if isinstance(stage5_file, tuple) and stage5_file[0].startswith("tangents:"):
+            tangents = dict(entry, id=file_id + "_tangents", export_tangents=True)
+            scene = prepare(tangents, os.path.join(out_dir, "files"), args.blender, log)
+            stage5_file = (stage5_file[0][len("tangents:"):], stage5_file[1])
         if stage5_file == "lambert":
             st5_scene = lambert_copy(scene)
         elif stage5_file is None:
@@ -170,7 +211,8 @@ def main():
             if suffix.endswith("+lambert"):
                 st5_scene = lambert_copy(st5_scene)
         half = max(1, int(round(entry["spp"] * args.spp_scale / 2)))
-        cyc, st5, _ = render_pair(args, entry, scene, st5_scene, half, "_" + name, stage5, flags)
+        binary = stage5_variant(args, variant[0]) if variant else stage5
+        cyc, st5, _ = render_pair(args, entry, scene, st5_scene, half, "_" + name, binary, flags)
         row = compare(entry, cyc, st5)
         c_regions = [m for m, _ in region_stats(*cyc)[:-1]]
         row.update({"experiment": name, "what": what, "size": f"{entry['width']}x{entry['height']}",

@@ -13,6 +13,8 @@ def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="export_blend.py")
     p.add_argument("--out", required=True, help="the .gltf (separate .bin and textures) or .glb to write")
+    p.add_argument("--tangents", action="store_true",
+                   help="also write Blender's MikkTSpace tangents (TANGENT; bench/cycles/gltf_residuals.py)")
     args = p.parse_args(argv)
     out = os.path.abspath(args.out)
     os.makedirs(os.path.dirname(out), exist_ok=True)
@@ -22,7 +24,7 @@ def main():
         filepath=out, export_format="GLB" if out.endswith(".glb") else "GLTF_SEPARATE",
         export_cameras=True, export_lights=True, convert_lighting_mode="SPEC",
         export_apply=True, export_yup=True, export_normals=True, export_texcoords=True,
-        export_tangents=False, export_colors=True, export_materials="EXPORT",
+        export_tangents=args.tangents, export_colors=True, export_materials="EXPORT",
         export_image_format="AUTO", use_mesh_edges=False, use_mesh_vertices=False,
         export_animations=False, use_selection=False, use_visible=False, use_renderable=False)
     if "FINISHED" not in result:

@@ -53,9 +53,15 @@ float ggx_lambda(vec3 w, float alpha) {
   return 0.5f * (sqrt(1.0f + alpha * alpha * t2) - 1.0f);
 }
 
-// Height-correlated masking-shadowing G2(wo, wi).
+// Height-correlated masking-shadowing G2(wo, wi), the glTF specification's (its Appendix B).
+// PT_BENCH_SEPARABLE_MASKING is set only by a bench build (bench/cycles/gltf_residuals.py):
+// Cycles 3.4's separable G1(wo) G1(wi), to measure what that difference does to an image.
 float ggx_g2(vec3 wo, vec3 wi, float alpha) {
+#ifdef PT_BENCH_SEPARABLE_MASKING
+  return 1.0f / ((1.0f + ggx_lambda(wo, alpha)) * (1.0f + ggx_lambda(wi, alpha)));
+#else
   return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+#endif
 }
 
 // The GGX conductor's BRDF for wo, wi in the upper hemisphere.

@@ -86,7 +86,9 @@ vec3 shading_to_world(Frame frame, Surface surface, vec3 wi) {
   if (!surface.shaded) return w;
   vec3 n = side_normal(surface);
   float cos_g = dot(w, n);
+#ifndef PT_BENCH_NO_FOLD  // set only by a bench build (bench/cycles/gltf_residuals.py): no fold
   if ((cos_g > 0.0f) != (wi.z > 0.0f)) w = w - 2.0f * cos_g * n;
+#endif
   return w;
 }
 
@@ -115,7 +117,9 @@ BsdfToward bsdf_toward(uint lobe, Material m, vec3 wo, Frame frame, Surface surf
   vec3 wr = frame_to_local(frame, w - 2.0f * cos_g * n);  // the folded partner R w
   vec3 f_cos = vec3(0.0f);
   if ((wl.z > 0.0f) == above && wl.z != 0.0f) f_cos += eval_lobe(lobe, m, wo, wl) * abs(wl.z);
+#ifndef PT_BENCH_NO_FOLD
   if ((wr.z > 0.0f) == above && wr.z != 0.0f) f_cos += eval_lobe(lobe, m, wo, wr) * abs(wr.z);
+#endif
   return BsdfToward(f_cos / abs(cos_g), abs(cos_g));
 }
 // The BSDF sample's pdf for direction w (world), as MIS weighs a light sample against it:
@@ -131,7 +135,9 @@ float bsdf_pdf_toward(uint lobe, Material m, vec3 wo, Frame frame, Surface surfa
   vec3 wr = frame_to_local(frame, w - 2.0f * cos_g * n);
   float pdf = 0.0f;
   if ((wl.z > 0.0f) == above && wl.z != 0.0f) pdf += lobe_pdf(lobe, m, wo, wl);
+#ifndef PT_BENCH_NO_FOLD
   if ((wr.z > 0.0f) == above && wr.z != 0.0f) pdf += lobe_pdf(lobe, m, wo, wr);
+#endif
   return pdf;
 }
 

@@ -76,10 +76,19 @@ PrimitiveShading read_shading(const tinygltf::Model& model, const tinygltf::Prim
 // no UV area, any tangent orthogonal to the face normal. Normals: the face normal.
 TriangleShading tangents_from_uvs(const glm::vec3 p[3], const glm::vec2 uv[3], glm::vec3 face_normal);
 
+// Per-vertex tangents (xyz, handedness w) of a primitive with normals and no TANGENT, made as
+// MikkTSpace makes them in essence (gltf_tangents.cpp): each triangle's dP/du, in the tangent
+// plane of each corner's normal, weighted by the corner's angle and summed over the vertices
+// that share position, normal and uv and the triangles whose UVs run the same way round; then
+// made orthogonal to the normal. A vertex no triangle with UV area touches gets (0, 0, 0, 0).
+std::vector<glm::vec4> vertex_tangents(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
+                                       const std::vector<glm::vec2>& uv, const std::vector<std::uint32_t>& indices);
+
 // The shading frame of the triangle of vertices `corner` (p: its world corners, uv: its
 // TEXCOORD_0) in world space: the primitive's normals by the inverse transpose of `world`
 // (turned to the front face), its tangents by `world` or made from the UVs. Returns whether
-// the triangle needs it: a vertex normal away from the face normal, or a normal map.
+// the triangle needs it: a vertex normal away from the face normal, or a normal map. A zero
+// tangent in prim.tangents is replaced by the one made from the UVs.
 bool shade_triangle(const PrimitiveShading& prim, const std::uint32_t corner[3], const glm::vec3 p[3],
                     const glm::vec2 uv[3], const glm::dmat4& world, bool normal_mapped, TriangleShading& out);
 

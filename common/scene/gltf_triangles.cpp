@@ -75,6 +75,11 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, int position_a
     shading_on_ = true;
   }
   indices = gltf::triangulate(prim.mode, indices);
+  // A normal map without the file's TANGENT: per-vertex tangents from the set the map reads.
+  const std::vector<glm::vec2>& map_uv = uv[(mt.tex_coord_sets >> kSlotNormal) & 1u];
+  if (mt.normal != kNoTexture && shading.tangents.empty() && !shading.normals.empty() && !map_uv.empty()) {
+    shading.tangents = gltf::vertex_tangents(positions, shading.normals, map_uv, indices);
+  }
   for (const glm::dmat4& world : worlds) {
     add_triangles(indices, positions, world, material, uv[0], uv[1], colors, shading);
   }
