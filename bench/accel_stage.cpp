@@ -242,12 +242,18 @@ void run_accel_stage(const Config& config) {
   csv.out << "stage,view,triangles,width,height,spp,quantity,rays,cpu_seconds,wall_seconds,runs,cpu_ns_per_sample,mrays_per_cpu_s,"
              "ratio_to_embree,note\n";
   const int rounds = std::max(1, config.stage_rounds);
+  auto wanted = [&](const std::string& stage, const std::string& view) {
+    const std::vector<std::string>& v = config.stage_views;
+    return v.empty() || std::find(v.begin(), v.end(), stage + ":" + view) != v.end();
+  };
   for (const char* view : {"inside", "outside", "grazing"}) {
+    if (!wanted("stage1", view)) continue;
     RenderSettings s;
     s.width = s.height = config.stage_size, s.spp = 16, s.seed = config.seed;
     measure(csv, "stage1", view, s, rounds);
   }
   for (const char* view : {"inside", "outside"}) {
+    if (!wanted("stage4", view)) continue;
     RenderSettings s;
     s.width = s.height = config.stage_size / 2, s.spp = 16, s.seed = config.seed;
     s.roulette = kRouletteThroughput;  // stage4's default

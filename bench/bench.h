@@ -45,6 +45,7 @@ struct Config {
   // half that size, each `stage_rounds` times alternating with Embree on the same rays.
   int stage_size = 256;
   int stage_rounds = 3;
+  std::vector<std::string> stage_views;  // only these "stage:view" rows (e.g. stage1:inside); empty: all
   std::string command;               // the command line, for the record (accel_run.txt)
 };
 

@@ -103,6 +103,8 @@ int main(int argc, char** argv) {
         ->capture_default_str()->check(CLI::Range(2, 4096));
     app.add_option("--stage-rounds", config.stage_rounds, "stage: alternating rounds per measurement")
         ->capture_default_str()->check(CLI::Range(1, 100));
+    app.add_option("--stage-views", config.stage_views,
+                   "stage: only these of stage1:inside, stage1:outside, stage1:grazing, stage4:inside, stage4:outside (repeatable)");
     try {
       app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

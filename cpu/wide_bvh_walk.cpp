@@ -248,12 +248,25 @@ bool occluded_avx512(const WideBvh& bvh, const WideRay& ray, float t_max) { retu
 #if PT_WIDE_WALK_ISA == 0
 namespace {
 #if PT_WIDE_DISPATCH
-// 2: AVX-512, 1: AVX2, 0: 4 lanes; `lanes` 4 asks for 4 lanes, 8 for at least AVX2.
-int level(int lanes) {
-  static const int best = __builtin_cpu_supports("avx512vl") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
-  return lanes == 4 ? 0 : lanes == 8 ? (best > 0 ? 1 : 0) : best;
+// 2: AVX-512, 1: AVX2, 0: 4 lanes, asked of the CPU once, when the program starts (a
+// constructor like this one may run before libgcc's own: hence __builtin_cpu_init).
+const int kBestLevel = [] {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512vl") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
+}();
+// The copy to run: `lanes` 4 asks for 4 lanes, 8 for at least AVX2, 0 for the best.
+inline int level(int lanes) {
+  return lanes == 4 ? 0 : lanes == 8 ? (kBestLevel > 0 ? 1 : 0) : kBestLevel;
 }
 #endif
+// The 4-lane copies as functions of their own: inlined into the dispatch below, their stack
+// frame (the walk's stack) was set up on every call, whichever copy ran (issue 50).
+[[gnu::noinline]] pt::WideHit nearest_4(const pt::WideBvh& bvh, const pt::WideRay& ray, pt::WideHit best) {
+  return nearest<16>(bvh, ray, best);
+}
+[[gnu::noinline]] bool occluded_4(const pt::WideBvh& bvh, const pt::WideRay& ray, float t_max) {
+  return occluded<16>(bvh, ray, t_max);
+}
 }  // namespace
 
 namespace pt {
@@ -265,7 +278,7 @@ WideHit wide_bvh_nearest(const WideBvh& bvh, const WideRay& ray, WideHit best, i
   if (l == 2) return wide_walk::nearest_avx512(bvh, ray, best);
   if (l == 1) return wide_walk::nearest_avx2(bvh, ray, best);
 #endif
-  return nearest<16>(bvh, ray, best);
+  return nearest_4(bvh, ray, best);
 }
 
 bool wide_bvh_occluded(const WideBvh& bvh, const WideRay& ray, float t_max, int lanes) {
@@ -275,7 +288,7 @@ bool wide_bvh_occluded(const WideBvh& bvh, const WideRay& ray, float t_max, int 
   if (l == 2) return wide_walk::occluded_avx512(bvh, ray, t_max);
   if (l == 1) return wide_walk::occluded_avx2(bvh, ray, t_max);
 #endif
-  return occluded<16>(bvh, ray, t_max);
+  return occluded_4(bvh, ray, t_max);
 }
 
 }  // namespace pt

@@ -206,9 +206,9 @@ uint sobol_1d_point(uint pixel_key, uint slot, uint sample_index) {
 // that a 1-D choice (a lobe, roulette) between two 2-D requests does not move the second
 // out of the first one's block: the pixel position and the first light point (or stage2's
 // and stage3's first direction) share block 0. Past 65,536 requests of a kind (32,768
-// bounces) the slots wrap around.
+// bounces) the slots wrap around. Only the independent sampler reads, and so seeds, a PCG stream.
 void start_sample(uint pixel_index, uint sample_index, uint seed, uint kind) {
-  rng_seed(pixel_index, sample_index, seed);
+  if (kind == kSamplerIndependent) rng_seed(pixel_index, sample_index, seed);
   sampler_state = uvec4(pcg_hash(pixel_index ^ pcg_hash(seed ^ 0x85ebca6bu)), sample_index, 0u, kind);
 }
 
