@@ -128,7 +128,7 @@ std::vector<Film> render_batches(const StageKernels& kernels, const Scene& scene
   std::optional<Bvh> built;
   if (!bvh && settings.accel == kAccelBvh && !scene.triangles.empty()) hooks.bvh = &built.emplace(build_bvh(scene.triangles));
   // The CPU's 8-wide form of that tree, collapsed once too (each set_scene would collapse
-  // it again: 0.15 s a render on the 1.3-million-triangle furnace, issue #47).
+  // it again: 0.15 s a render on the 1.3-million-triangle furnace, issue #51).
   std::optional<WideBvh> wide;
   if (backend_under_test != "gpu" && hooks.bvh && !hooks.bvh->nodes.empty()) {
     give_cpu_wide_bvh(*backend, hooks.bvh, &wide.emplace(build_wide_bvh(*hooks.bvh, scene.triangles)));

@@ -4,7 +4,6 @@ sandbox's walls, the report, the tests' shards, the lab pages' hint tables, the 
 the rebuilds."""
 import csv
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -177,6 +176,7 @@ def shard_checks(pt_tests):
     that lab 2's tests listed file by file are its tests, each once."""
     from grading.lab_tests import read_report, test_names
     from grading.shards import merge_reports, plan, shard_specs, spec_terms, tests_by_file
+    from grading.work_build import test_files
     spec = '[stage2]~[ggx]~"sampling: a mixed, material*",[sampling]~[ggx]'
     expect(spec_terms(spec) == ['[stage2]~[ggx]~"sampling: a mixed, material*"', "[sampling]~[ggx]"],
            "a spec's terms split at the commas outside quotes")
@@ -196,10 +196,10 @@ def shard_checks(pt_tests):
            "the shards' reports merge in the one run's order, with each test's seconds", repr(rep.cases))
     if pt_tests:
         specs = ['[stage2]~[ggx]~[energy]~"sampling: a mixed material*"~[compare]~[mutants],[sampling]~[ggx]']
-        files = sorted(set(re.findall(r"\[#(\w+)\]", subprocess.run([pt_tests, "-#", "--list-tags"] + specs,
-                                                                   capture_output=True, text=True).stdout)))
-        listed = sorted(n for names in tests_by_file(pt_tests, specs, files).values() for n in names)
-        names = sorted(test_names(os.path.dirname(os.path.dirname(pt_tests)), specs, os.path.basename(pt_tests)))
+        build, target = os.path.dirname(os.path.dirname(pt_tests)), os.path.basename(pt_tests)
+        listed = sorted(n for names in tests_by_file(pt_tests, specs, test_files(build, specs, target)).values()
+                        for n in names)
+        names = sorted(test_names(build, specs, target))
         expect(len(names) > 10 and listed == names, "lab 2's tests listed file by file are its tests, each once",
                f"{len(listed)} listed, {len(names)} tests")
 

@@ -11,6 +11,7 @@ import os
 import subprocess
 
 from .lab_tests import Report
+from .sandbox import Result
 
 
 def spec_terms(spec):
@@ -88,7 +89,7 @@ def merge_reports(reports, order):
     rep.whole = all(r.whole for r in reports)
     rep.running = next((r.running for r in reports if r.running), None)
     rep.problem = next((r.problem for r in reports if r.problem), None)
-    rep.durations = {n: s for r in reports for n, s in getattr(r, "durations", {}).items()}
+    rep.durations = {n: s for r in reports for n, s in r.durations.items()}
     return rep
 
 
@@ -96,7 +97,7 @@ def merge_results(results):
     """One sandbox Result of the shards' runs, as judge() reads it: the worst ending (a signal or
     an exit code), timed out or over a cap when one was, their output one after another, the wall
     time of the longest and the CPU time of all."""
-    merged = results[0].__class__()
+    merged = Result()
     worst = max(results, key=lambda r: (r.timed_out, r.over_cap is not None, r.rc < 0 or r.rc > 128, r.rc != 0))
     merged.rc, merged.timed_out, merged.over_cap = worst.rc, worst.timed_out, worst.over_cap
     merged.running_function = next((r.running_function for r in results if r.running_function), None)
