@@ -37,7 +37,11 @@ template <class F> [[gnu::always_inline]] inline F lanes_min(F x, F y) {
 }
 
 // f folded over the lanes (f(x, y) must be the same as f(y, x)): every lane ends up with
-// f of all of them. 8 or 4 lanes (2 for the double-precision test build).
+// f of all of them. 8 or 4 lanes (2 for the double-precision test build). f is one of the
+// folds below, not a lambda: a lambda is inlined only by the optimiser, and at -O0 a call
+// to it from an AVX2 function passes 32-byte vectors in the other ABI, so that the lanes'
+// nearest hit came out wrong (a hit at t = 0 found by the -O0 check build's
+// test_triangle_lanes.cpp, issue #51).
 template <class V, class Fn> [[gnu::always_inline]] inline V lanes_fold(V x, Fn f) {
   constexpr int n = int(sizeof(V) / sizeof(x[0]));
   static_assert(n == 8 || n == 4 || n == 2);
@@ -52,6 +56,14 @@ template <class V, class Fn> [[gnu::always_inline]] inline V lanes_fold(V x, Fn 
     return f(x, __builtin_shufflevector(x, x, 1, 0));
   }
 }
+
+// The folds of nearest_of_lanes, inlined at every optimisation level.
+struct LanesMinFold {
+  template <class V> [[gnu::always_inline]] V operator()(V x, V y) const { return y < x ? y : x; }
+};
+struct LanesOrFold {
+  template <class V> [[gnu::always_inline]] V operator()(V x, V y) const { return x | y; }
+};
 
 // x on every lane, bit for bit: x - 0 is x for every x, -0 included (0 + x would make it +0).
 template <class F> [[gnu::always_inline]] inline F lanes_splat(float x) {
@@ -143,18 +155,18 @@ template <int bytes> [[gnu::always_inline]] inline Hit nearest_of_lanes(const La
   using F = typename L::F;
   using I = typename L::I;
   using Int = typename L::Int;
-  const F t = lanes_fold(near.t, [](F x, F y) { return lanes_min(x, y); });
+  const F t = lanes_fold(near.t, LanesMinFold{});  // lanes_min's order
   const I at_t = (near.t == t) & (near.index >= 0);
   const I index_at_t = at_t ? near.index : I{} + std::numeric_limits<Int>::max();
-  const I nearest = lanes_fold(index_at_t, [](I x, I y) { return y < x ? y : x; });
+  const I nearest = lanes_fold(index_at_t, LanesMinFold{});
   if (nearest[0] == std::numeric_limits<Int>::max()) return best;
   // Its barycentrics: the bits of the one lane that holds it, the others masked to 0.
   const I pick = near.index == nearest;
   I b1, b2;
   __builtin_memcpy(&b1, &near.b1, sizeof b1);
   __builtin_memcpy(&b2, &near.b2, sizeof b2);
-  b1 = lanes_fold(b1 & pick, [](I x, I y) { return x | y; });
-  b2 = lanes_fold(b2 & pick, [](I x, I y) { return x | y; });
+  b1 = lanes_fold(b1 & pick, LanesOrFold{});
+  b2 = lanes_fold(b2 & pick, LanesOrFold{});
   float b1_bits, b2_bits;
   const Int b1_0 = b1[0], b2_0 = b2[0];
   __builtin_memcpy(&b1_bits, &b1_0, sizeof b1_bits);

@@ -138,7 +138,7 @@ template <int bytes> struct Walk {
     static constexpr typename L::Int weight[8] = {1, 2, 4, 8, 16, 32, 64, 128};
     I w;
     __builtin_memcpy(&w, weight, sizeof w);
-    return unsigned(lanes_fold(hit & w, [](I x, I y) { return x | y; })[0]);
+    return unsigned(lanes_fold(hit & w, LanesOrFold{})[0]);
   }
 
   // The leaf block's triangles against `best` (by_index: the tie rule of the nearest hit).
