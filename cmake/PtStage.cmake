@@ -104,18 +104,31 @@ pt::StageKernels kernels();
 "// Written by cmake/PtStage.cmake: ${DIR}'s kernel in both forms, its CPU variants in the
 // order of cpu/cpu_variants.h.
 #include \"${DIR}/kernels.h\"
-#include \"${DIR}_kernel_spirv.h\"
 #include \"cpu/kernel_scene.h\"
 ${before_render_include}
 namespace ${ns} {
 ${declarations}
+std::span<const std::uint32_t> spirv();  // spirv.cpp
 pt::StageKernels kernels() {
   static const pt::CpuKernel cpu[] = {${table}};
-  return pt::StageKernels{\"${DIR}\", cpu, ${DIR}_kernel_spirv, ${uses_lights}, ${before_render}};
+  return pt::StageKernels{\"${DIR}\", cpu, spirv(), ${uses_lights}, ${before_render}};
 }
 }  // namespace ${ns}
 ")
-  add_library(pt_${DIR} STATIC ${sources} ${ARG_SOURCES} ${out}/kernels.cpp ${${DIR}_kernel_SPIRV_HEADER})
+  # The SPIR-V in a file of its own: a change to the GPU kernel (a lab's file, in the
+  # grader's build of every submission) recompiles this array alone, not kernels.cpp and
+  # the headers it needs (issue #47: 0.5 CPU s instead of 1.2 per stage).
+  file(CONFIGURE OUTPUT ${out}/spirv.cpp CONTENT
+"// Written by cmake/PtStage.cmake: ${DIR}'s kernel compiled to SPIR-V (${DIR}_kernel_spirv.h).
+#include <cstdint>
+#include <span>
+#include \"${DIR}_kernel_spirv.h\"
+
+namespace ${ns} {
+std::span<const std::uint32_t> spirv() { return ${DIR}_kernel_spirv; }
+}  // namespace ${ns}
+")
+  add_library(pt_${DIR} STATIC ${sources} ${ARG_SOURCES} ${out}/kernels.cpp ${out}/spirv.cpp ${${DIR}_kernel_SPIRV_HEADER})
   target_include_directories(pt_${DIR} PUBLIC ${CMAKE_CURRENT_BINARY_DIR} PRIVATE ${out})
   target_link_libraries(pt_${DIR} PUBLIC pt_common)
   if(NOT ARG_NO_PROGRAM)
