@@ -59,7 +59,7 @@ template <class V, class Fn> [[gnu::always_inline]] inline V lanes_fold(V x, Fn 
 
 // The folds of nearest_of_lanes, inlined at every optimisation level.
 struct LanesMinFold {
-  template <class V> [[gnu::always_inline]] V operator()(V x, V y) const { return y < x ? y : x; }
+  template <class V> [[gnu::always_inline]] V operator()(V x, V y) const { return lanes_min(x, y); }
 };
 struct LanesOrFold {
   template <class V> [[gnu::always_inline]] V operator()(V x, V y) const { return x | y; }
@@ -155,7 +155,7 @@ template <int bytes> [[gnu::always_inline]] inline Hit nearest_of_lanes(const La
   using F = typename L::F;
   using I = typename L::I;
   using Int = typename L::Int;
-  const F t = lanes_fold(near.t, LanesMinFold{});  // lanes_min's order
+  const F t = lanes_fold(near.t, LanesMinFold{});
   const I at_t = (near.t == t) & (near.index >= 0);
   const I index_at_t = at_t ? near.index : I{} + std::numeric_limits<Int>::max();
   const I nearest = lanes_fold(index_at_t, LanesMinFold{});
