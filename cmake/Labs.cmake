@@ -16,9 +16,11 @@
 #                          the student's functions are kept out of line (a GCC optimize
 #                          pragma that inlining cannot cross), so that a test that loops in one
 #                          of them stops in a frame that names it (tools/grading/stuck.py).
-#   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once (all features) instead of
-#                          once per feature variant: a faster build (the sanitizer and
-#                          lab-check builds use it); the images are the same.
+#   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once instead of once per feature
+#                          variant: a faster build (the sanitizer and lab-check builds use
+#                          it); the images are the same. That copy reads the render's feature
+#                          set at run time, as the GPU's specialization constant gives it
+#                          (cpu/kernel_bindings.h).
 set(PT_LAB 0 CACHE STRING "Lab mode: 1-6 builds lab N with the student's labs/labN.glsl; 0 is the normal build")
 option(PT_LAB_CHECK "Check build: PT_LAB_STUB=N at run time selects lab N's stubs on the CPU" OFF)
 option(PT_LAB_GRADING "The grader's lab build: the student's functions out of line on the CPU" OFF)

@@ -55,6 +55,12 @@ function(pt_add_stage DIR)
   add_custom_target(${DIR}_spirv DEPENDS ${${DIR}_kernel_SPIRV_HEADER})  # the GPU kernel alone
 
   math(EXPR count "1 << ${ARG_CPU_GROUPS}")
+  # PT_CPU_GENERAL_ONLY's one copy reads the render's feature set at run time, as a GPU
+  # kernel's specialization constant gives it (cpu/kernel_bindings.h).
+  set(runtime_features "")
+  if(PT_CPU_GENERAL_ONLY)
+    set(runtime_features "#define PT_CPU_RUNTIME_FEATURES\n")
+  endif()
   math(EXPR last "${count} - 1")
   set(sources)
   set(declarations)
@@ -64,7 +70,7 @@ function(pt_add_stage DIR)
 "// Written by cmake/PtStage.cmake: CPU variant ${i} of ${count} of ${DIR}'s kernel.
 #define PT_CPU_VARIANT ${i}
 #define PT_CPU_VARIANT_COUNT ${count}
-#include \"cpu/cpu_variants.h\"
+${runtime_features}#include \"cpu/cpu_variants.h\"
 #include \"cpu/kernel_prelude.h\"
 #include \"cpu/kernel_scene.h\"
 

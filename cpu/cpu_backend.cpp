@@ -53,6 +53,7 @@ class CpuBackend : public Backend {
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data()};
     scene_.light_guide = scene.light_guide.data();
+    scene_.features = features;  // read by a copy built for the features at run time (kernel_bindings.h)
     sphere_soa_ = std::make_unique<SphereSoa>(scene.spheres);
     scene_.sphere_soa = sphere_soa_->data.data();
     scene_.sphere_soa_stride = sphere_soa_->stride;

@@ -28,6 +28,9 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   env_texels = scene.environment_radiance;
   env_tables = scene.environment_tables;
   params = pass;
+#ifdef PT_CPU_RUNTIME_FEATURES
+  kSceneFeatures = scene.features;  // kernel_bindings.h
+#endif
 }
 
 // Renders rows [y0, y1) of the pass into out[y * width + x] (called on many threads).

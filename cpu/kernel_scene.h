@@ -37,6 +37,9 @@ struct KernelScene {
   const TriangleShading* triangle_shading = nullptr;  // shading normals, or nullptr without them
   const float* environment_radiance = nullptr;  // the environment map (common/scene/environment.h),
   const float* environment_tables = nullptr;    // or nullptr without one
+  // The features the render asked for (the scene's, or every one with --all-features): read
+  // by a copy of the kernel built with PT_CPU_RUNTIME_FEATURES (kernel_bindings.h) only.
+  uint features = kFeatureAll;
 };
 
 // A stage's kernel compiled as C++ (cpu/kernel_entry.h): one copy per feature variant

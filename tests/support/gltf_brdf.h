@@ -59,43 +59,66 @@ inline glm::dvec3 gltf_brdf(const GltfBrdf& b, glm::dvec3 v, glm::dvec3 l) {
   return (1.0 - b.metallic) * dielectric + b.metallic * metal;
 }
 
+// The midpoint grid of gltf_albedo and glass_reflectance (transmission_mix.h): n angles
+// theta_h in (0, pi/2), and 2n angles phi in (0, 2 pi), of which only the first n are
+// visited. v lies in the xz-plane, so every integrand here depends on phi through cos(phi)
+// alone (the dot products with v and the z components), and the grid is symmetric about
+// phi = pi (phi_j and phi_{2n-1-j} = 2 pi - phi_j): the sum over the first half, doubled,
+// is the sum over all 2n, at half the cost. Their sines and cosines are computed once here,
+// not in the inner loop.
+struct HemisphereGrid {
+  int n;
+  double d_theta, d_phi;
+  std::vector<double> cos_phi, sin_phi;        // phi_j = (j + 0.5) pi / n, j < n
+  std::vector<double> sin_theta, cos_theta;    // theta_i = (i + 0.5) (pi / 2) / n
+  std::vector<double> sqrt_t, sqrt_one_minus_t;  // t_i = (i + 0.5) / n (the Lambert part)
+  explicit HemisphereGrid(int n_) : n(n_), d_theta(0.5 * M_PI / n_), d_phi(M_PI / n_) {
+    for (int j = 0; j < n; j++) {
+      double phi = (j + 0.5) * d_phi;
+      cos_phi.push_back(std::cos(phi)), sin_phi.push_back(std::sin(phi));
+    }
+    for (int i = 0; i < n; i++) {
+      double theta = (i + 0.5) * d_theta, t = (i + 0.5) / n;
+      sin_theta.push_back(std::sin(theta)), cos_theta.push_back(std::cos(theta));
+      sqrt_t.push_back(std::sqrt(t)), sqrt_one_minus_t.push_back(std::sqrt(1.0 - t));
+    }
+  }
+};
+
 // The directional albedo: the integral of f cos over the hemisphere, plus the delta
 // reflection of roughness 0. The base is integrated over cosine-distributed directions l,
 // the GGX part over microfacet normals h in (theta_h, phi), l the reflection of v about h
 // (dw_l = 4 (v.h) dw_h): a grid even in the angle resolves both the peak of a smooth
 // surface and the microfacets near the horizon that a grazing v sees. Midpoint rule, an
-// n x 2n grid each.
+// n x 2n grid each (HemisphereGrid: its half in phi, doubled).
 inline glm::dvec3 gltf_albedo(const GltfBrdf& b, double cos_o, int n = 400) {
+  const HemisphereGrid g(n);
   glm::dvec3 v(std::sqrt(std::max(0.0, 1.0 - cos_o * cos_o)), 0.0, cos_o);
   double alpha = b.roughness * b.roughness;
+  const glm::dvec3 layer_f0 = gltf_layer_f0(b);
   glm::dvec3 sum(0.0);
-  const double d_theta = 0.5 * M_PI / n, d_phi = M_PI / n;
   for (int i = 0; i < n; i++) {
-    double t = (i + 0.5) / n;
-    double theta_h = (i + 0.5) * d_theta;
-    for (int j = 0; j < 2 * n; j++) {
-      double phi = (j + 0.5) * d_phi;
+    const double st = g.sqrt_t[i], ct = g.sqrt_one_minus_t[i];
+    const double sin_h = g.sin_theta[i], cos_h = g.cos_theta[i];
+    for (int j = 0; j < n; j++) {
       // The Lambert base: cosine-distributed l (sin^2 theta = t), weight pi f_base.
-      double st = std::sqrt(t), ct = std::sqrt(1.0 - t);
-      glm::dvec3 l(st * std::cos(phi), st * std::sin(phi), ct);
-      glm::dvec3 fr = gltf_schlick(gltf_layer_f0(b), glm::dot(v, glm::normalize(v + l)));
-      sum += (1.0 - b.metallic) * (1.0 - b.specular * gltf_max3(fr)) * b.base / (2.0 * n * n);
+      glm::dvec3 l(st * g.cos_phi[j], st * g.sin_phi[j], ct);
+      glm::dvec3 fr = gltf_schlick(layer_f0, glm::dot(v, glm::normalize(v + l)));
+      sum += 2.0 * (1.0 - b.metallic) * (1.0 - b.specular * gltf_max3(fr)) * b.base / (2.0 * n * n);
       if (alpha <= 0.0) continue;
       // The GGX part: f cos dw_l = f l.z 4 (v.h) sin(theta_h) dtheta_h dphi.
-      glm::dvec3 h(std::sin(theta_h) * std::cos(phi), std::sin(theta_h) * std::sin(phi), std::cos(theta_h));
+      glm::dvec3 h(sin_h * g.cos_phi[j], sin_h * g.sin_phi[j], cos_h);
       double vh = glm::dot(v, h);
       if (vh <= 0.0) continue;
       glm::dvec3 r = 2.0 * vh * h - v;
       if (r.z <= 0.0) continue;
-      double weight = gltf_specular_brdf(alpha, v, r) * r.z * 4.0 * vh * std::sin(theta_h) * d_theta * d_phi;
-      glm::dvec3 f = (1.0 - b.metallic) * b.specular * gltf_schlick(gltf_layer_f0(b), vh) +
-                     b.metallic * gltf_schlick(b.base, vh);
+      double weight = 2.0 * gltf_specular_brdf(alpha, v, r) * r.z * 4.0 * vh * sin_h * g.d_theta * g.d_phi;
+      glm::dvec3 f = (1.0 - b.metallic) * b.specular * gltf_schlick(layer_f0, vh) + b.metallic * gltf_schlick(b.base, vh);
       sum += f * weight;
     }
   }
   if (alpha <= 0.0) {  // the mirror reflections of a smooth layer and a smooth metal
-    sum += (1.0 - b.metallic) * b.specular * gltf_schlick(gltf_layer_f0(b), cos_o) +
-           b.metallic * gltf_schlick(b.base, cos_o);
+    sum += (1.0 - b.metallic) * b.specular * gltf_schlick(layer_f0, cos_o) + b.metallic * gltf_schlick(b.base, cos_o);
   }
   return sum;
 }

@@ -31,20 +31,18 @@ inline double exact_fresnel(double c, double eta) {
 // gltf_albedo integrates its layer (midpoint rule, n x 2n).
 inline double glass_reflectance(double alpha, double eta, double cos_o, int n = 400) {
   if (alpha <= 0.0) return exact_fresnel(cos_o, eta);
+  const HemisphereGrid g(n);  // its half in phi, doubled (gltf_brdf.h)
   glm::dvec3 v(std::sqrt(std::max(0.0, 1.0 - cos_o * cos_o)), 0.0, cos_o);
-  const double d_theta = 0.5 * M_PI / n, d_phi = M_PI / n;
   double sum = 0.0;
   for (int i = 0; i < n; i++) {
-    double theta_h = (i + 0.5) * d_theta;
-    for (int j = 0; j < 2 * n; j++) {
-      double phi = (j + 0.5) * d_phi;
-      glm::dvec3 h(std::sin(theta_h) * std::cos(phi), std::sin(theta_h) * std::sin(phi), std::cos(theta_h));
+    const double sin_h = g.sin_theta[i], cos_h = g.cos_theta[i];
+    for (int j = 0; j < n; j++) {
+      glm::dvec3 h(sin_h * g.cos_phi[j], sin_h * g.sin_phi[j], cos_h);
       double vh = glm::dot(v, h);
       if (vh <= 0.0) continue;
       glm::dvec3 l = 2.0 * vh * h - v;
       if (l.z <= 0.0) continue;
-      sum += exact_fresnel(vh, eta) * gltf_specular_brdf(alpha, v, l) * l.z * 4.0 * vh * std::sin(theta_h) * d_theta *
-             d_phi;
+      sum += 2.0 * exact_fresnel(vh, eta) * gltf_specular_brdf(alpha, v, l) * l.z * 4.0 * vh * sin_h * g.d_theta * g.d_phi;
     }
   }
   return sum;
@@ -56,7 +54,7 @@ inline double glass_reflectance(double alpha, double eta, double cos_o, int n = 
 inline glm::dvec3 mixture_reflectance(const GltfBrdf& b, double t, double cos_o, int n = 400) {
   GltfBrdf dielectric = b, metal = b;
   dielectric.metallic = 0.0, metal.metallic = 1.0;
-  glm::dvec3 glass(glass_reflectance(b.roughness * b.roughness, b.ior, cos_o, n));
+  glm::dvec3 glass(t > 0.0 ? glass_reflectance(b.roughness * b.roughness, b.ior, cos_o, n) : 0.0);  // no glass part
   return b.metallic * gltf_albedo(metal, cos_o, n) +
          (1.0 - b.metallic) * ((1.0 - t) * gltf_albedo(dielectric, cos_o, n) + t * glass);
 }
