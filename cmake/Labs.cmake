@@ -18,13 +18,17 @@
 #                          of them stops in a frame that names it (tools/grading/stuck.py).
 #   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once instead of once per feature
 #                          variant: a faster build (the sanitizer and lab-check builds use
-#                          it); the images are the same. That copy reads the render's feature
-#                          set at run time, as the GPU's specialization constant gives it
-#                          (cpu/kernel_bindings.h).
+#                          it); the images are the same.
+#   -DPT_CPU_RUNTIME_FEATURES=ON  the CI's check build, with PT_CPU_GENERAL_ONLY: the CPU copy
+#                          reads the render's feature set at run time, as the GPU's
+#                          specialization constant gives it (cpu/kernel_bindings.h), so that
+#                          its tests check every feature gate at the GPU's mask. It costs
+#                          about 5% more compile per kernel, so a lab's build leaves it off.
 set(PT_LAB 0 CACHE STRING "Lab mode: 1-6 builds lab N with the student's labs/labN.glsl; 0 is the normal build")
 option(PT_LAB_CHECK "Check build: PT_LAB_STUB=N at run time selects lab N's stubs on the CPU" OFF)
 option(PT_LAB_GRADING "The grader's lab build: the student's functions out of line on the CPU" OFF)
 option(PT_CPU_GENERAL_ONLY "Compile one general CPU kernel per stage instead of feature variants" OFF)
+option(PT_CPU_RUNTIME_FEATURES "The CPU kernels read the render's feature set at run time (the check build)" OFF)
 if(NOT PT_LAB MATCHES "^[0-6]$")
   message(FATAL_ERROR "PT_LAB is '${PT_LAB}': use -DPT_LAB=1, 2, 3, 4, 5 or 6 for a lab (docs/labs/README.md), or 0 for the normal build")
 endif()

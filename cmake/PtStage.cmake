@@ -55,10 +55,10 @@ function(pt_add_stage DIR)
   add_custom_target(${DIR}_spirv DEPENDS ${${DIR}_kernel_SPIRV_HEADER})  # the GPU kernel alone
 
   math(EXPR count "1 << ${ARG_CPU_GROUPS}")
-  # PT_CPU_GENERAL_ONLY's one copy reads the render's feature set at run time, as a GPU
-  # kernel's specialization constant gives it (cpu/kernel_bindings.h).
+  # PT_CPU_RUNTIME_FEATURES (the check build's): the copy reads the render's feature set at
+  # run time, as a GPU kernel's specialization constant gives it (cpu/kernel_bindings.h).
   set(runtime_features "")
-  if(PT_CPU_GENERAL_ONLY)
+  if(PT_CPU_RUNTIME_FEATURES)
     set(runtime_features "#define PT_CPU_RUNTIME_FEATURES\n")
   endif()
   math(EXPR last "${count} - 1")

@@ -54,7 +54,7 @@ inline uint bvh_index_at(uint i) { return bvh_indices[i]; }
 
 // The features this copy of the kernel is compiled for (cpu_variants.h): one copy per
 // variant, so the code of a feature the scene lacks is not in the copy that renders it.
-// PT_CPU_RUNTIME_FEATURES (the one copy of a PT_CPU_GENERAL_ONLY build, the check build's):
+// PT_CPU_RUNTIME_FEATURES (the check build's one copy per stage, cmake/Labs.cmake):
 // the render's feature set read at run time (KernelScene::features), as the GPU's
 // specialization constant gives it, so that has_feature() decides at every bit of the mask
 // exactly as a GPU kernel specialised to the scene does; tests/stages/test_specialised.cpp

@@ -10,7 +10,7 @@
 // run time (PT_CPU_RUNTIME_FEATURES, cpu/kernel_bindings.h), so there every case below
 // runs each gate of stages 1-4 at exactly the GPU's mask, bit for bit. On the GPU a case
 // costs the driver a compile of its own for each stage, most of this file's time there
-// (issue #51; on lavapipe under the sanitizers, a cold cache: stage1's 15 kernels 28 s,
+// (issue #51; on lavapipe under the sanitizers, a cold cache: stage1's kernels 28 s,
 // stage4's 172 s, docs/results/test_cost.csv). There stage1 runs every case: it checks
 // that the mask the host passes as the specialization constant is the scene's, which is
 // the same code for every stage. Every stage's specialised GPU kernels (the GPU's default)
