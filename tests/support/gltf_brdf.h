@@ -65,20 +65,20 @@ inline glm::dvec3 gltf_brdf(const GltfBrdf& b, glm::dvec3 v, glm::dvec3 l) {
 // alone (the dot products with v and the z components), and the grid is symmetric about
 // phi = pi (phi_j and phi_{2n-1-j} = 2 pi - phi_j): the sum over the first half, doubled,
 // is the sum over all 2n, at half the cost. Their sines and cosines are computed once here,
-// not in the inner loop.
+// not in the inner loop. `cell` is a cell's dtheta dphi, doubled for its mirror image.
 struct HemisphereGrid {
   int n;
-  double d_theta, d_phi;
+  double cell;
   std::vector<double> cos_phi, sin_phi;        // phi_j = (j + 0.5) pi / n, j < n
   std::vector<double> sin_theta, cos_theta;    // theta_i = (i + 0.5) (pi / 2) / n
   std::vector<double> sqrt_t, sqrt_one_minus_t;  // t_i = (i + 0.5) / n (the Lambert part)
-  explicit HemisphereGrid(int n_) : n(n_), d_theta(0.5 * M_PI / n_), d_phi(M_PI / n_) {
+  explicit HemisphereGrid(int n_) : n(n_), cell(2.0 * (0.5 * M_PI / n_) * (M_PI / n_)) {
     for (int j = 0; j < n; j++) {
-      double phi = (j + 0.5) * d_phi;
+      double phi = (j + 0.5) * M_PI / n;
       cos_phi.push_back(std::cos(phi)), sin_phi.push_back(std::sin(phi));
     }
     for (int i = 0; i < n; i++) {
-      double theta = (i + 0.5) * d_theta, t = (i + 0.5) / n;
+      double theta = (i + 0.5) * 0.5 * M_PI / n, t = (i + 0.5) / n;
       sin_theta.push_back(std::sin(theta)), cos_theta.push_back(std::cos(theta));
       sqrt_t.push_back(std::sqrt(t)), sqrt_one_minus_t.push_back(std::sqrt(1.0 - t));
     }
@@ -104,7 +104,7 @@ inline glm::dvec3 gltf_albedo(const GltfBrdf& b, double cos_o, int n = 400) {
       // The Lambert base: cosine-distributed l (sin^2 theta = t), weight pi f_base.
       glm::dvec3 l(st * g.cos_phi[j], st * g.sin_phi[j], ct);
       glm::dvec3 fr = gltf_schlick(layer_f0, glm::dot(v, glm::normalize(v + l)));
-      sum += 2.0 * (1.0 - b.metallic) * (1.0 - b.specular * gltf_max3(fr)) * b.base / (2.0 * n * n);
+      sum += (1.0 - b.metallic) * (1.0 - b.specular * gltf_max3(fr)) * b.base / (double(n) * n);  // 2 x 1 / (2 n^2)
       if (alpha <= 0.0) continue;
       // The GGX part: f cos dw_l = f l.z 4 (v.h) sin(theta_h) dtheta_h dphi.
       glm::dvec3 h(sin_h * g.cos_phi[j], sin_h * g.sin_phi[j], cos_h);
@@ -112,7 +112,7 @@ inline glm::dvec3 gltf_albedo(const GltfBrdf& b, double cos_o, int n = 400) {
       if (vh <= 0.0) continue;
       glm::dvec3 r = 2.0 * vh * h - v;
       if (r.z <= 0.0) continue;
-      double weight = 2.0 * gltf_specular_brdf(alpha, v, r) * r.z * 4.0 * vh * sin_h * g.d_theta * g.d_phi;
+      double weight = gltf_specular_brdf(alpha, v, r) * r.z * 4.0 * vh * sin_h * g.cell;
       glm::dvec3 f = (1.0 - b.metallic) * b.specular * gltf_schlick(layer_f0, vh) + b.metallic * gltf_schlick(b.base, vh);
       sum += f * weight;
     }

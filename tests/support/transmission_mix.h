@@ -42,7 +42,7 @@ inline double glass_reflectance(double alpha, double eta, double cos_o, int n = 
       if (vh <= 0.0) continue;
       glm::dvec3 l = 2.0 * vh * h - v;
       if (l.z <= 0.0) continue;
-      sum += 2.0 * exact_fresnel(vh, eta) * gltf_specular_brdf(alpha, v, l) * l.z * 4.0 * vh * sin_h * g.d_theta * g.d_phi;
+      sum += exact_fresnel(vh, eta) * gltf_specular_brdf(alpha, v, l) * l.z * 4.0 * vh * sin_h * g.cell;
     }
   }
   return sum;
