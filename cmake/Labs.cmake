@@ -16,6 +16,10 @@
 #                          the student's functions are kept out of line (a GCC optimize
 #                          pragma that inlining cannot cross), so that a test that loops in one
 #                          of them stops in a frame that names it (tools/grading/stuck.py).
+#   -DPT_LAB_GRADED_STAGES=stage2;stage4  with PT_LAB_GRADING, the stages whose CPU kernels
+#                          lab N's tests run (the grader lists their tags): the other stages'
+#                          kernels get labs/ungraded.h's traps instead of the student's code,
+#                          so that each submission recompiles only the kernels its tests run.
 #   -DPT_CPU_GENERAL_ONLY=ON  compile each stage's CPU kernel once instead of once per feature
 #                          variant: a faster build (the sanitizer and lab-check builds use
 #                          it); the images are the same.
@@ -24,6 +28,8 @@
 #                          specialization constant gives it (cpu/kernel_bindings.h), so that
 #                          its tests check every feature gate at the GPU's mask. It costs
 #                          about 5% more compile per kernel, so a lab's build leaves it off.
+set(PT_LAB_GRADED_STAGES "" CACHE STRING
+    "Grading (PT_LAB_GRADING): the stages (stage1 ... stage6, or none) whose CPU kernels run lab PT_LAB's tests; the others get traps. Empty: every stage")
 set(PT_LAB 0 CACHE STRING "Lab mode: 1-6 builds lab N with the student's labs/labN.glsl; 0 is the normal build")
 option(PT_LAB_CHECK "Check build: PT_LAB_STUB=N at run time selects lab N's stubs on the CPU" OFF)
 option(PT_LAB_GRADING "The grader's lab build: the student's functions out of line on the CPU" OFF)
@@ -52,10 +58,15 @@ foreach(pair 2:common/kernel/uniform_hemisphere.glsl 2:common/kernel/russian_rou
         # GCC does not inline a function whose optimize options differ from its caller's. The
         # handout's #includes come first, outside the pragma: the kernel's own functions in
         # them stay inlined (read without a configure dependency: the file is the student's).
+        # A stage's CPU kernel that none of the lab's tests runs (PT_LAB_UNGRADED_KERNEL,
+        # cmake/PtStage.cmake) gets the traps of labs/ungraded.h instead, so that it does not
+        # include the student's file and a submission does not rebuild it.
         file(STRINGS ${PROJECT_SOURCE_DIR}/labs/lab${lab}.glsl includes REGEX "^#include \"(common|labs)/[a-z_0-9/]+\\.glsl\"$")
         list(JOIN includes "\n" includes)
-        string(APPEND definitions "${includes}\n#ifdef __cplusplus\n#pragma GCC push_options\n#pragma GCC optimize(\"no-ipa-cp\")\n#endif\n"
-                                  "#include \"labs/lab${lab}.glsl\"\n#ifdef __cplusplus\n#pragma GCC pop_options\n#endif\n")
+        string(APPEND definitions "${includes}\n#if defined(__cplusplus) && defined(PT_LAB_UNGRADED_KERNEL)\n"
+                                  "#include \"labs/ungraded.h\"\n#else\n"
+                                  "#ifdef __cplusplus\n#pragma GCC push_options\n#pragma GCC optimize(\"no-ipa-cp\")\n#endif\n"
+                                  "#include \"labs/lab${lab}.glsl\"\n#ifdef __cplusplus\n#pragma GCC pop_options\n#endif\n#endif\n")
       else()
         string(APPEND definitions "#include \"labs/lab${lab}.glsl\"\n")
       endif()

@@ -57,9 +57,14 @@ function(pt_add_stage DIR)
   math(EXPR count "1 << ${ARG_CPU_GROUPS}")
   # PT_CPU_RUNTIME_FEATURES (the check build's): the copy reads the render's feature set at
   # run time, as a GPU kernel's specialization constant gives it (cpu/kernel_bindings.h).
-  set(runtime_features "")
+  set(kernel_defines "")
   if(PT_CPU_RUNTIME_FEATURES)
-    set(runtime_features "#define PT_CPU_RUNTIME_FEATURES\n")
+    set(kernel_defines "#define PT_CPU_RUNTIME_FEATURES\n")
+  endif()
+  # The grader's build (cmake/Labs.cmake, PT_LAB_GRADED_STAGES): a stage's kernel that none
+  # of the lab's tests runs gets the traps of labs/ungraded.h in place of the student's code.
+  if(PT_LAB_GRADING AND PT_LAB_GRADED_STAGES AND NOT ARG_NO_PROGRAM AND NOT ns IN_LIST PT_LAB_GRADED_STAGES)
+    string(APPEND kernel_defines "#define PT_LAB_UNGRADED_KERNEL \"${ns}\"\n")
   endif()
   math(EXPR last "${count} - 1")
   set(sources)
@@ -70,7 +75,7 @@ function(pt_add_stage DIR)
 "// Written by cmake/PtStage.cmake: CPU variant ${i} of ${count} of ${DIR}'s kernel.
 #define PT_CPU_VARIANT ${i}
 #define PT_CPU_VARIANT_COUNT ${count}
-${runtime_features}#include \"cpu/cpu_variants.h\"
+${kernel_defines}#include \"cpu/cpu_variants.h\"
 #include \"cpu/kernel_prelude.h\"
 #include \"cpu/kernel_scene.h\"
 

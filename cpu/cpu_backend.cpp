@@ -8,6 +8,7 @@
 #include <cerrno>  // program_invocation_short_name (GNU)
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <span>
 #include <system_error>
 #include <thread>
@@ -27,6 +28,16 @@ namespace pt {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// cpu_stages_run(): a bit per stage number, set by every pass.
+std::atomic<std::uint32_t> stages_run{0};
+
+// The bit of a stage's kernel in stages_run ("stage4_direct_indirect": bit 3), 0 for a kernel
+// that is not a stage's (the tests' own).
+std::uint32_t stage_bit(const char* name) {
+  if (std::strncmp(name, "stage", 5) != 0 || name[5] < '1' || name[5] > '9') return 0;
+  return 1u << (name[5] - '1');
+}
 
 // The copy of the kernel built for (at least) the scene features `features` (kFeature* bits).
 const CpuKernel& cpu_kernel_for(const StageKernels& kernels, uint features) {
@@ -94,6 +105,7 @@ class CpuBackend : public Backend {
       soa_ = std::make_unique<TriangleSoa>(triangles_);
       scene_.triangle_soa = soa_->data.data(), scene_.triangle_soa_stride = soa_->stride;
     }
+    stages_run.fetch_or(stage_bit(kernels_.name), std::memory_order_relaxed);
     KernelScene scene = scene_;
     scene.counters = result.counters;
     kernel_.bind(scene, params);
@@ -143,6 +155,9 @@ class CpuBackend : public Backend {
 std::unique_ptr<Backend> make_cpu_backend(const StageKernels& kernels, unsigned threads) {
   return std::make_unique<CpuBackend>(kernels, threads);
 }
+
+std::uint32_t cpu_stages_run() { return stages_run.load(std::memory_order_relaxed); }
+void clear_cpu_stages_run() { stages_run.store(0, std::memory_order_relaxed); }
 
 void give_cpu_wide_bvh(Backend& backend, const Bvh* bvh, const WideBvh* wide) {
   if (auto* cpu = dynamic_cast<CpuBackend*>(&backend)) cpu->give_wide_bvh(bvh, wide);

@@ -6,6 +6,8 @@
 //   PT_LAB_CHECK (CMake -DPT_LAB_CHECK=ON, the CI's check build): the stub of lab
 //   $PT_LAB_STUB, chosen at run time, so one build checks all six labs; or the known-wrong
 //   answer $PT_LAB_MUTANT (labs/mutants.h).
+//   PT_LAB_GRADING with PT_LAB_GRADED_STAGES (the grader's build, tools/grade_lab.py): the
+//   stages whose tests are not lab N's get traps in place of lab N's functions (ungraded).
 #pragma once
 
 #include <atomic>
@@ -43,6 +45,17 @@ inline float not_written(int lab, const char* function) {
                  function, lab, lab);
   }
   return std::numeric_limits<float>::quiet_NaN();
+}
+
+// The grader's trap (labs/ungraded.h): lab `lab`'s function ran in the CPU kernel of a stage
+// that the grader built without the student's code, because none of the lab's tests is
+// tagged with that stage. Says so on stderr and aborts: a grade never rests on the reference.
+[[noreturn]] inline void ungraded(int lab, const char* function, const char* stage) {
+  std::fprintf(stderr,
+               "grade_lab: lab %d's %s ran in %s's CPU kernel, which the grader built without the student's code: "
+               "the test that runs %s must carry the tag [%s] (docs/testing.md, section 8)\n",
+               lab, function, stage, stage, stage);
+  std::abort();
 }
 
 // The check build's known-wrong answers (labs/mutants.h): whether PT_LAB_MUTANT names

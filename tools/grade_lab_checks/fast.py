@@ -176,7 +176,7 @@ def shard_checks(pt_tests):
     that lab 2's tests listed file by file are its tests, each once."""
     from grading.lab_tests import read_report, test_names
     from grading.shards import merge_reports, plan, shard_specs, spec_terms, tests_by_file
-    from grading.work_build import test_files
+    from grading.lab_tests import test_files
     spec = '[stage2]~[ggx]~"sampling: a mixed, material*",[sampling]~[ggx]'
     expect(spec_terms(spec) == ['[stage2]~[ggx]~"sampling: a mixed, material*"', "[sampling]~[ggx]"],
            "a spec's terms split at the commas outside quotes")

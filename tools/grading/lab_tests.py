@@ -5,6 +5,7 @@ which comes over a pipe the grader holds, finished or cut short by a kill, into 
 cases that passed or failed, each failure in words with the numbers its check saw."""
 import json
 import os
+import re
 import signal
 import subprocess
 import xml.etree.ElementTree as ET
@@ -68,6 +69,24 @@ def test_names(build, specs, target=TEST_TARGET):
     listing = subprocess.run([os.path.join(build, "bin", target), "-#", "--list-test-names-only"] + specs,
                              capture_output=True, text=True)
     return [l for l in listing.stdout.splitlines() if l.strip()]
+
+
+def test_tags(build, specs, target):
+    """The Catch2 tags of the tests specs select, with the [#file] ones."""
+    listing = subprocess.run([os.path.join(build, "bin", target), "-#", "--list-tags"] + specs,
+                             capture_output=True, text=True)
+    return set(re.findall(r"\[(#?\w+)\]", listing.stdout))
+
+
+def test_files(build, specs, target):
+    """The test files (Catch2's [#file] tags, without .cpp) that hold a test specs select."""
+    return sorted(t[1:] for t in test_tags(build, specs, target) if t.startswith("#"))
+
+
+def test_stages(build, specs, target):
+    """The stages (["stage2", "stage4"]) whose CPU kernels the tests specs select run: their
+    tags, which every test that runs a stage carries (tests/test_main.cpp checks it)."""
+    return sorted(t for t in test_tags(build, specs, target) if re.fullmatch(r"stage\d", t))
 
 
 def short(text, limit=240):

@@ -5,19 +5,20 @@ repository, rewritten only where a file differs, and WORK/build its build with -
 build made from labs/labLAB.glsl is deleted (depends.py), so a submission that does not compile
 leaves no test program at all, never the previous student's (issue 24). The first build, with
 the repository's own labs/labLAB.glsl, is configured again with only the test files that hold
-one of the lab's tests; it and the list of those tests are kept in WORK/setup.json."""
+one of the lab's tests, and with the student's code in the CPU kernels of the stages those tests
+run only (their tags; the other stages' kernels get traps, labs/ungraded.h); it and the list of
+those tests are kept in WORK/setup.json."""
 import fcntl
 import filecmp
 import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 
 from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die
 from .shards import tests_by_file
-from .lab_tests import lab_specs, tag_specs, test_names
+from .lab_tests import lab_specs, tag_specs, test_files, test_names, test_stages
 from .depends import delete_dependents
 from .sandbox import BUILD_LIMITS, NOBODY
 
@@ -155,7 +156,7 @@ def build_is_new(build, a):
 
 # The setup's format: a WORK/setup.json of another one (an older grader's build, configured
 # without PT_LAB_GRADING) is built again.
-SETUP_FORMAT = 3  # 3: "by_file", the lab's tests by test file (shards.py)
+SETUP_FORMAT = 4  # 3: "by_file", the lab's tests by test file (shards.py); 4: "stages", PT_LAB_GRADED_STAGES
 
 
 def kept_setup(stamp, lab, fresh, changed):
@@ -182,13 +183,16 @@ def lab_target(build):
     return TEST_TARGET, None, None
 
 
-def configure(a, box, cmake, src, build, setup_log, files):
+def configure(a, box, cmake, src, build, setup_log, files, stages):
     """Configures the lab build in the sandbox: the grader's (PT_LAB_GRADING), one general CPU
-    kernel per stage, pt_lab_tests made of files (test files without .cpp; [] for all)."""
+    kernel per stage, pt_lab_tests made of files (test files without .cpp; [] for all), the
+    student's code in the CPU kernels of stages only (["stage2"]; None for every stage: the
+    others get the traps of labs/ungraded.h, cmake/Labs.cmake)."""
+    graded = "" if stages is None else (";".join(stages) or "none")
     r = box.run([cmake, "-S", src, "-B", build, "-G", "Unix Makefiles", "-DCMAKE_BUILD_TYPE=Release",
                  f"-DPT_LAB={a.lab}", "-DPT_LAB_GRADING=ON", "-DPT_CPU_GENERAL_ONLY=ON",
-                 "-DPT_LAB_TEST_FILES=" + ";".join(files)], build, [build], [src], box.hidden_in_build,
-                BUILD_LIMITS, BUILD_TIMEOUT)
+                 "-DPT_LAB_TEST_FILES=" + ";".join(files), "-DPT_LAB_GRADED_STAGES=" + graded],
+                build, [build], [src], box.hidden_in_build, BUILD_LIMITS, BUILD_TIMEOUT)
     with open(setup_log, "ab") as fh:
         fh.write(r.stdout + r.stderr)
     if r.rc != 0:
@@ -196,25 +200,19 @@ def configure(a, box, cmake, src, build, setup_log, files):
     return lab_target(build)
 
 
-def test_files(build, specs, target):
-    """The test files (Catch2's [#file] tags, without .cpp) that hold a test specs select."""
-    listing = subprocess.run([os.path.join(build, "bin", target), "-#", "--list-tags"] + specs,
-                             capture_output=True, text=True)
-    return sorted(set(re.findall(r"\[#(\w+)\]", listing.stdout)))
-
-
 def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
     """Configures the lab build, builds its tests with the repository's own labs/labLAB.glsl (the
     handout's stub; a failure there is not a student's), both in the sandbox, and lists the
-    lab's tests; then configures it again with only the test files that hold one of them, so
-    that a submission's build compiles no other. Returns the setup {lab, target, specs,
-    tests}, written to stamp."""
+    lab's tests; then configures it again with only the test files that hold one of them, and
+    the student's code only in the kernels of the stages they run, so that a submission's
+    build compiles no other. Returns the setup {lab, target, specs, tests, by_file, stages},
+    written to stamp."""
     src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
     os.makedirs(build, exist_ok=True)
     box.owner_of_writable(build)
-    target, tags, files = configure(a, box, cmake, src, build, setup_log, [])
+    target, tags, files = configure(a, box, cmake, src, build, setup_log, [], None)
     delete_dependents(build, lab_file)
-    specs, tests = None, None
+    specs, tests, stages = None, None, None
     while True:
         rc, timed_out = sealed_build(box, cmake, build, src, a.jobs, target, setup_log)
         if rc != 0 or timed_out:
@@ -226,9 +224,13 @@ def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
             die(f"lab {a.lab}'s test program lost tests when built of the files that hold them only: {setup_log}", 1)
         tests = names
         needed = ["test_main"] + test_files(build, specs, target) if files else None
-        if not needed or sorted(needed) == sorted(files):
+        run = test_stages(build, specs, target) if files else None
+        if (not needed or sorted(needed) == sorted(files)) and run == stages:
             break
-        target, tags, files = configure(a, box, cmake, src, build, setup_log, needed)
+        # Again with only those files, and the student's code only in the kernels of the
+        # stages the lab's tests run: a submission rebuilds no other.
+        target, tags, files = configure(a, box, cmake, src, build, setup_log, needed, run)
+        stages = run
     if not tests:
         die(f"lab {a.lab}'s specs {specs} select no test of {target}", 1)
     # The tests by file, for the shards a submission's tests run in (shards.py); none when
@@ -236,7 +238,8 @@ def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
     by_file = tests_by_file(os.path.join(build, "bin", target), specs, test_files(build, specs, target))
     if sorted(n for names in by_file.values() for n in names) != sorted(tests):
         by_file = {}
-    setup = {"lab": a.lab, "format": SETUP_FORMAT, "target": target, "specs": specs, "tests": tests, "by_file": by_file}
+    setup = {"lab": a.lab, "format": SETUP_FORMAT, "target": target, "specs": specs, "tests": tests, "by_file": by_file,
+             "stages": stages}
     with open(stamp, "w", encoding="utf-8") as fh:
         json.dump(setup, fh, indent=1)
     return setup
