@@ -2,6 +2,7 @@
 part of the article): labs 2 and 4 graded by tools/grade_lab.py on the fixture submissions,
 each verdict line, the summary, grades.csv and grades.xml checked."""
 import csv
+import json
 import os
 import re
 import shutil
@@ -99,6 +100,26 @@ def lab2(subs, out, work):
            "the histogram of a submission is kept in logs/NAME.pictures/")
     nothing_planted(work)
     no_pictures_in_repository()
+    graded_kernels(work, 2, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"])
+
+
+def graded_kernels(work, lab, stages, ungraded):
+    """The set-up built the student's code into the CPU kernels of stages (the tags of the lab's
+    tests) only: the kernels of the ungraded stage folders have the traps (labs/ungraded.h) and
+    do not include labs/labLAB.glsl, so no submission rebuilt them."""
+    setup = json.load(open(os.path.join(work, "setup.json"), encoding="utf-8"))
+    expect(setup.get("stages") == stages, f"lab {lab}'s set-up names the stages its tests run: {stages}",
+           setup.get("stages"))
+    build = os.path.join(work, "build")
+    for folder in ungraded:
+        kernel = open(os.path.join(build, folder, "cpu_kernel_v0.cpp"), encoding="utf-8").read()
+        expect('#define PT_LAB_UNGRADED_KERNEL "' + folder.split("_")[0] + '"' in kernel,
+               f"{folder}'s CPU kernel is built with the traps")
+        depfile = os.path.join(build, "CMakeFiles", f"pt_{folder}.dir", folder, "cpu_kernel_v0.cpp.o.d")
+        expect(os.path.isfile(depfile) and f"labs/lab{lab}.glsl" not in open(depfile, encoding="utf-8").read(),
+               f"{folder}'s CPU kernel does not include labs/lab{lab}.glsl")
+    depfile = os.path.join(build, "CMakeFiles", "pt_stage2_montecarlo.dir", "stage2_montecarlo", "cpu_kernel_v0.cpp.o.d")
+    expect(f"labs/lab{lab}.glsl" in open(depfile, encoding="utf-8").read(), "stage2's CPU kernel includes the student's file")
 
 
 def lab2_sandbox_alone(subs, out, work):
@@ -139,3 +160,4 @@ def lab4(subs, out, work):
            "b_pdf_doubled fails the mean of 1/pdf", repr(failed["b_pdf_doubled"]))
     expect(any(n.startswith("light sampling: triangle_light_pdf is d^2 / (cos_y area) times the pick")
                for n in failed["c_pdf_mismatch"]), "c_pdf_mismatch fails the held-back test", repr(failed["c_pdf_mismatch"]))
+    graded_kernels(work, 4, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"])
