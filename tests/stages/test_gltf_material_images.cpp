@@ -70,11 +70,7 @@ ExpectedImage plane_image(const Scene& scene, const std::function<glm::dvec3(dou
   });
 }
 
-RenderSettings sky_settings(std::uint32_t seed) {
-  RenderSettings s = settings(kSize, kSize, 64, seed);
-  s.sky = glm::vec3(kSky);
-  return s;
-}
+RenderSettings sky_settings(std::uint32_t seed) { return settings_under_sky(kSize, kSize, 64, seed); }
 
 }  // namespace
 

@@ -78,11 +78,7 @@ void check_stage1(const Scene& scene, const ExpectedImage& want, std::uint32_t s
   CHECK(off <= 1);
 }
 
-RenderSettings sky_settings(std::uint32_t seed) {
-  RenderSettings s = settings(kSize, kSize, 64, seed);
-  s.sky = glm::vec3(kSky);
-  return s;
-}
+RenderSettings sky_settings(std::uint32_t seed) { return settings_under_sky(kSize, kSize, 64, seed); }
 
 // A Lambert material (metallic 0, no specular layer) of base colour `base`.
 GltfWriter::Json lambert(glm::vec3 base) {

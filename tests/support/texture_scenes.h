@@ -35,6 +35,13 @@ const glm::dvec3 kSky(0.5, 1.0, 2.0);
 // compared with that rounding allowed (channel_means_ratio's relative floor).
 const double kRounding = 1e-5;
 
+// A render's settings under the uniform sky kSky.
+inline RenderSettings settings_under_sky(int width, int height, std::uint64_t spp, std::uint32_t seed) {
+  RenderSettings s = settings(width, height, spp, seed);
+  s.sky = glm::vec3(kSky);
+  return s;
+}
+
 inline Scene sky_plane() {
   return load_gltf(PT_SOURCE_DIR "/tests/data/gltf/tex_sky_plane.gltf");
 }

@@ -78,15 +78,16 @@ def test_tags(build, specs, target):
     return set(re.findall(r"\[(#?\w+)\]", listing.stdout))
 
 
-def test_files(build, specs, target):
-    """The test files (Catch2's [#file] tags, without .cpp) that hold a test specs select."""
-    return sorted(t[1:] for t in test_tags(build, specs, target) if t.startswith("#"))
+def test_files(build, specs, target, tags=None):
+    """The test files (Catch2's [#file] tags, without .cpp) that hold a test specs select
+    (tags: test_tags's, if already listed)."""
+    return sorted(t[1:] for t in (tags or test_tags(build, specs, target)) if t.startswith("#"))
 
 
-def test_stages(build, specs, target):
-    """The stages (["stage2", "stage4"]) whose CPU kernels the tests specs select run: their
-    tags, which every test that runs a stage carries (tests/test_main.cpp checks it)."""
-    return sorted(t for t in test_tags(build, specs, target) if re.fullmatch(r"stage\d", t))
+def test_stages(tags):
+    """The stages (["stage2", "stage4"]) whose CPU kernels the tests of test_tags run: their
+    tags, which every test of a group that runs a stage carries (tests/test_main.cpp checks it)."""
+    return sorted(t for t in tags if re.fullmatch(r"stage\d", t))
 
 
 def short(text, limit=240):

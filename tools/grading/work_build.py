@@ -18,7 +18,7 @@ import sys
 
 from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die
 from .shards import tests_by_file
-from .lab_tests import lab_specs, tag_specs, test_files, test_names, test_stages
+from .lab_tests import lab_specs, tag_specs, test_files, test_names, test_stages, test_tags
 from .depends import delete_dependents
 from .sandbox import BUILD_LIMITS, NOBODY
 
@@ -223,19 +223,19 @@ def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
         if tests is not None and names != tests:
             die(f"lab {a.lab}'s test program lost tests when built of the files that hold them only: {setup_log}", 1)
         tests = names
-        needed = ["test_main"] + test_files(build, specs, target) if files else None
-        run = test_stages(build, specs, target) if files else None
+        listed = test_tags(build, specs, target)
+        needed = ["test_main"] + test_files(build, specs, target, listed) if files else None
+        run = test_stages(listed) if files else None
         if (not needed or sorted(needed) == sorted(files)) and run == stages:
             break
-        # Again with only those files, and the student's code only in the kernels of the
-        # stages the lab's tests run: a submission rebuilds no other.
+        # Again with only those files, the student's code only in those stages' kernels.
         target, tags, files = configure(a, box, cmake, src, build, setup_log, needed, run)
         stages = run
     if not tests:
         die(f"lab {a.lab}'s specs {specs} select no test of {target}", 1)
     # The tests by file, for the shards a submission's tests run in (shards.py); none when
     # the files' lists do not hold each test once (then one run holds them all).
-    by_file = tests_by_file(os.path.join(build, "bin", target), specs, test_files(build, specs, target))
+    by_file = tests_by_file(os.path.join(build, "bin", target), specs, test_files(build, specs, target, listed))
     if sorted(n for names in by_file.values() for n in names) != sorted(tests):
         by_file = {}
     setup = {"lab": a.lab, "format": SETUP_FORMAT, "target": target, "specs": specs, "tests": tests, "by_file": by_file,
