@@ -11,7 +11,7 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
-from grade_lab_checks.fixtures import lab2_fixtures, lab4_fixtures, plants
+from grade_lab_checks.fixtures import lab2_fixtures, lab3_fixtures, lab4_fixtures, plants
 from grade_lab_checks.support import REPO, TIMEOUT, TOOL, expect, written_mutants
 
 
@@ -142,6 +142,22 @@ def lab2_sandbox_alone(subs, out, work):
     })
     nothing_planted(work)
     no_pictures_in_repository()
+
+
+def lab3(subs, out, work):
+    """Lab 3's fixtures: the correct one passes, the one that does not compile says where, each
+    known-wrong answer fails with a suspect; the student's code only in the kernels of the
+    stages lab 3's tests run."""
+    os.makedirs(subs)
+    lab3_fixtures(subs)
+    mutants = written_mutants(subs, 3)
+    expected = {"a_correct": r"PASS", "b_syntax_error": r"COMPILE ERROR labs/lab3\.glsl:\d+(:\d+)?: error: .*"}
+    for mutant in mutants:
+        expected["m_" + mutant] = FAIL
+    lines, summary = grade(3, subs, out, work, TIMEOUT)
+    check_lines(lines, expected)
+    check_summary(summary, expected)
+    graded_kernels(work, 3, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"])
 
 
 def lab4(subs, out, work):
