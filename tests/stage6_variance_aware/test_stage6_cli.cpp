@@ -11,6 +11,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_stage6_cli {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using pt_test::Run;
@@ -63,3 +65,5 @@ TEST_CASE("stage6 cli: a bad option exits 2 with one line naming it and writes n
     CHECK_FALSE(fs::exists(out));
   }
 }
+
+}  // namespace test_stage6_cli

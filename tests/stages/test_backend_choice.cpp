@@ -16,6 +16,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_backend_choice {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using Type = pt::VulkanDevice::Type;
@@ -154,3 +156,5 @@ TEST_CASE("backend auto: no loader or no device, listed cheaply, is said once an
     CHECK(r.out.find("backend cpu") != std::string::npos);
   }
 }
+
+}  // namespace test_backend_choice

@@ -27,6 +27,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_cli {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using pt_test::Run;
@@ -257,3 +259,5 @@ TEST_CASE("cli: a second Ctrl-C exits at once and leaves no half-written file", 
   }
   CHECK(temporaries == 0);
 }
+
+}  // namespace test_cli

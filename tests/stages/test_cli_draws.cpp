@@ -15,6 +15,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_cli_draws {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using pt_test::Run;
@@ -90,3 +92,5 @@ TEST_CASE("--frame replaces the file's camera by one that frames the scene", "[c
   Run both = run("--scene " + file + " --frame --camera 0 --out " + framed);
   pt_test::check_error(both, "stage1_raycast", 2, "--frame and --camera both choose the view");
 }
+
+}  // namespace test_cli_draws

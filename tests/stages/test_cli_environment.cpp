@@ -15,6 +15,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_cli_environment {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using pt_test::Run;
@@ -106,3 +108,5 @@ TEST_CASE("cli environment: a good map (or a black one) renders, the summary say
     if (name == "stage4_direct_indirect") CHECK(r.err.find("light sampling picks it with probability") != std::string::npos);
   }
 }
+
+}  // namespace test_cli_environment

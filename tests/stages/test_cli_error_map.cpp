@@ -14,6 +14,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_cli_error_map {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using pt_test::Run;
@@ -84,3 +86,5 @@ TEST_CASE("cli: the summary prints the per-pixel error, and --error-map draws it
   CHECK(help.out.find("--error-map") != std::string::npos);
   CHECK(help.out.find("per-pixel relative error") != std::string::npos);
 }
+
+}  // namespace test_cli_error_map

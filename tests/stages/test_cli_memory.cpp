@@ -34,6 +34,8 @@ TEST_CASE("cli: an image larger than the machine can hold is refused with the nu
   CHECK(r.err.find("40000x40000") != std::string::npos);
 }
 
+namespace test_cli_memory {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 // stage1 run with `args` (and the environment assignments `env`) in a child of its own: its
@@ -173,3 +175,5 @@ TEST_CASE("cli: --backend gpu at 16384 x 16384 is refused before it allocates or
   CHECK(r.max_rss_kb < 1024 * 1024);
   CHECK(!fs::exists(path("huge_gpu.exr")));
 }
+
+}  // namespace test_cli_memory

@@ -20,6 +20,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_cli_outputs {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using pt_test::Run;
@@ -148,3 +150,5 @@ TEST_CASE("cli: --resume PATH continues PATH, saves to it, and removes it when d
 TEST_CASE("cli: a folder given to --resume is named as a folder", "[reliability][checkpoint]") {
   check_error(run(kSmall + "--spp 4 --resume " + scratch().string() + " --out " + path("r.exr")), 2, "is a folder");
 }
+
+}  // namespace test_cli_outputs

@@ -25,6 +25,8 @@
 namespace fs = std::filesystem;
 using namespace pt_test;
 
+namespace test_cli_parts {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 fs::path scratch() { return scratch_dir("pt_cli_parts"); }
@@ -212,3 +214,5 @@ TEST_CASE("cli: pt_merge and pt_compare refuse a part whose header was edited or
   check_error(merge("--out " + path("e.exr") + " " + old16 + rest), "pt_merge", 3, "pt:samples");
   check_error(compare(old16 + " " + path("p32.exr")), "pt_compare", 3, "pt:samples");
 }
+
+}  // namespace test_cli_parts

@@ -23,6 +23,8 @@
 namespace fs = std::filesystem;
 using namespace pt_test::stage1_cli;
 
+namespace test_cli_reliability {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 using pt_test::Run;
@@ -169,3 +171,5 @@ TEST_CASE("cli: a program copied away from OpenImageIO's module refuses a .png i
 }
 
 // ---- Memory (issue 45, item 6): the whole need checked before anything large is made ----
+
+}  // namespace test_cli_reliability

@@ -21,6 +21,8 @@
 using namespace pt;
 using namespace pt::test;
 
+namespace test_convergence {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 constexpr double kAnswer = 2.0;  // the furnace's every pixel, every channel
@@ -97,3 +99,5 @@ TEST_CASE("convergence: the RMSE halves as the samples quadruple for every stage
     }
   }
 }
+
+}  // namespace test_convergence

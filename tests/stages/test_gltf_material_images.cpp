@@ -24,6 +24,8 @@
 using namespace pt;
 using namespace pt::test;
 
+namespace test_gltf_material_images {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 constexpr int kSize = 16;
@@ -49,25 +51,9 @@ GltfWriter::Json pbr(glm::vec3 base, double metallic, double roughness) {
 }
 
 // The image of the plane when a direction seen at cosine c from the normal has radiance
-// `value(c)`: each pixel the mean of it over the pixel, by 3-point Gauss-Legendre on 4 x 4
-// cells (Fresnel changes by a third across a pixel near the horizon: a midpoint rule of
-// 8 x 8 points is off by 1e-4 of it, above the float rounding that stage5's exact samples show).
+// `value(c)`.
 ExpectedImage plane_image(const Scene& scene, const std::function<glm::dvec3(double)>& value) {
-  const double node[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
-  const double weight[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-  Camera cam = make_camera(scene, 1.0f);
-  return expected_image(kSize, kSize, [&](double x0, double y0, double x1, double y1) {
-    glm::dvec3 sum(0.0);
-    for (int i = 0; i < 12; i++) {
-      for (int j = 0; j < 12; j++) {
-        double sx = x0 + (x1 - x0) * (i / 3 + node[i % 3]) / 4.0, sy = y0 + (y1 - y0) * (j / 3 + node[j % 3]) / 4.0;
-        glm::dvec3 dir = glm::normalize(glm::dvec3(cam.forward) + sx * double(cam.extent_x) * glm::dvec3(cam.right) +
-                                        sy * double(cam.extent_y) * glm::dvec3(cam.up));
-        sum += value(-dir.y) * (weight[i % 3] * weight[j % 3] / 16.0);
-      }
-    }
-    return sum;
-  });
+  return expected_image_by_direction(scene, kSize, kSize, [&](glm::dvec3 dir) { return value(-dir.y); });
 }
 
 RenderSettings sky_settings(std::uint32_t seed) { return settings_under_sky(kSize, kSize, 64, seed); }
@@ -124,3 +110,5 @@ TEST_CASE("glTF material: a rough dielectric-metal mix under a uniform sky is th
     check_scene(kernels, scene, want, sky_settings(seed += 100), 1e-3);
   }
 }
+
+}  // namespace test_gltf_material_images

@@ -20,6 +20,8 @@
 using namespace pt;
 using namespace pt::test;
 
+namespace test_sampler_stages {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 constexpr int kSize = 16;
@@ -88,3 +90,5 @@ TEST_CASE("sampler: under sobol the printed per-pixel error does not understate 
     CHECK(e.rmse <= e.estimated);
   }
 }
+
+}  // namespace test_sampler_stages

@@ -28,7 +28,7 @@ using pt_test::rgba;
 
 namespace {
 
-constexpr int kSize = 16;
+constexpr int kTexcoordSize = 16;
 
 // The 4 x 4 texture the plane shows on TEXCOORD_1 (u = (x + 1) / 2, v = (1 - y) / 2: each
 // texel 4 x 4 pixels); TEXCOORD_0 is (0.9, 0.9) at every corner: texel (3, 3) everywhere.
@@ -67,18 +67,18 @@ uint pixel_texel(const std::vector<uint>& t, double x0, double y0, double x1, do
 // sample within rounding of a texel's edge may see the next one: one pixel may be off).
 void check_stage1(const Scene& scene, const ExpectedImage& want, std::uint32_t seed) {
   INFO("stage1_raycast");
-  Film film = render_on_test_backend(stage1::kernels(), scene, settings(kSize, kSize, 16, seed)).film;
+  Film film = render_on_test_backend(stage1::kernels(), scene, settings(kTexcoordSize, kTexcoordSize, 16, seed)).film;
   int off = 0;
-  for (int y = 0; y < kSize; y++) {
-    for (int x = 0; x < kSize; x++) {
-      glm::dvec3 got = film.mean(x, y), w = want[std::size_t(y) * kSize + x];
+  for (int y = 0; y < kTexcoordSize; y++) {
+    for (int x = 0; x < kTexcoordSize; x++) {
+      glm::dvec3 got = film.mean(x, y), w = want[std::size_t(y) * kTexcoordSize + x];
       off += glm::length(got - w) > 1e-5 * glm::length(w);
     }
   }
   CHECK(off <= 1);
 }
 
-RenderSettings sky_settings(std::uint32_t seed) { return settings_under_sky(kSize, kSize, 64, seed); }
+RenderSettings texcoord_sky_settings(std::uint32_t seed) { return settings_under_sky(kTexcoordSize, kTexcoordSize, 64, seed); }
 
 // A Lambert material (metallic 0, no specular layer) of base colour `base`.
 GltfWriter::Json lambert(glm::vec3 base) {
@@ -96,7 +96,7 @@ struct BaseColourPlane {
     return m;
   });
   ExpectedImage image(glm::dvec3 light) const {
-    return expected_image(kSize, kSize, [&](double x0, double y0, double x1, double y1) {
+    return expected_image(kTexcoordSize, kTexcoordSize, [&](double x0, double y0, double x1, double y1) {
       return glm::dvec3(factor) * srgb_texel(pixel_texel(texels, x0, y0, x1, y1)) * light;
     });
   }
@@ -112,7 +112,7 @@ struct EmissivePlane {
     return m;
   });
   ExpectedImage image() const {
-    return expected_image(kSize, kSize, [&](double x0, double y0, double x1, double y1) {
+    return expected_image(kTexcoordSize, kTexcoordSize, [&](double x0, double y0, double x1, double y1) {
       return glm::dvec3(1.0, 0.5, 0.25) * srgb_texel(pixel_texel(texels, x0, y0, x1, y1));
     });
   }
@@ -136,7 +136,7 @@ TEST_CASE("texCoord 1: a base colour texture on TEXCOORD_1 is read through it: s
   std::uint32_t seed = test_seed(46700);
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
-    check_scene(kernels, plane.scene, plane.image(kSky), sky_settings(seed += 100), kRounding);
+    check_scene(kernels, plane.scene, plane.image(kSky), texcoord_sky_settings(seed += 100), kRounding);
   }
 }
 
@@ -152,7 +152,7 @@ TEST_CASE("texCoord 1: an emissive texture on TEXCOORD_1 is seen through it, in 
   std::uint32_t seed = test_seed(46800);
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
-    check_scene(kernels, plane.scene, plane.image(), settings(kSize, kSize, 16, seed += 100), kRounding);
+    check_scene(kernels, plane.scene, plane.image(), settings(kTexcoordSize, kTexcoordSize, 16, seed += 100), kRounding);
   }
 }
 
@@ -166,20 +166,20 @@ TEST_CASE("texCoord 1: an alpha mask on TEXCOORD_1 cuts its holes where that set
     return m;
   });
   auto image = [&](glm::dvec3 light) {
-    return expected_image(kSize, kSize, [&](double x0, double y0, double x1, double y1) {
+    return expected_image(kTexcoordSize, kTexcoordSize, [&](double x0, double y0, double x1, double y1) {
       uint v = pixel_texel(texels, x0, y0, x1, y1);
       return (v >> 24) == 0u ? kSky : srgb_texel(v) * light;
     });
   };
   std::uint32_t seed = test_seed(46900);
-  RenderSettings s = sky_settings(seed);
+  RenderSettings s = texcoord_sky_settings(seed);
   {
     INFO("stage1_raycast");
     Film film = render_on_test_backend(stage1::kernels(), scene, s).film;
     ExpectedImage want = image(glm::dvec3(1.0));
     int off = 0;
-    for (int i = 0; i < kSize * kSize; i++) {
-      off += glm::length(film.mean(i % kSize, i / kSize) - want[std::size_t(i)]) > 1e-5 * glm::length(want[std::size_t(i)]);
+    for (int i = 0; i < kTexcoordSize * kTexcoordSize; i++) {
+      off += glm::length(film.mean(i % kTexcoordSize, i / kTexcoordSize) - want[std::size_t(i)]) > 1e-5 * glm::length(want[std::size_t(i)]);
     }
     CHECK(off <= 1);
   }
@@ -207,13 +207,13 @@ TEST_CASE("texCoord 1: a metallic-roughness texture on TEXCOORD_1 makes its half
   // 10 back from the origin along the view: every ray starts above the plane.
   orthographic_camera(g, {0, -10 * std::sin(theta), 10 * c}, {std::sin(theta / 2), 0, 0, std::cos(theta / 2)});
   Scene scene = load_gltf(g.write(pt_test::scratch_dir("pt_texcoord_images").string() + "/metallic.gltf"));
-  ExpectedImage want = expected_image(kSize, kSize, [&](double x0, double, double x1, double) {
+  ExpectedImage want = expected_image(kTexcoordSize, kTexcoordSize, [&](double x0, double, double x1, double) {
     return kSky * (x0 + x1 < 0.0 ? gltf_schlick(base, c) : base);
   });
   std::uint32_t seed = test_seed(47000);
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
-    check_scene(kernels, scene, want, sky_settings(seed += 100), kRounding);
+    check_scene(kernels, scene, want, texcoord_sky_settings(seed += 100), kRounding);
   }
 }
 
@@ -234,14 +234,14 @@ TEST_CASE("KHR_materials_specular: where specularTexture's alpha is 0 the dielec
   });
   REQUIRE(scene.materials.at(0).kind == kMaterialDielectric);
   const glm::dvec3 layered = gltf_albedo(b, 1.0);
-  ExpectedImage want = expected_image(kSize, kSize, [&](double x0, double, double x1, double) {
+  ExpectedImage want = expected_image(kTexcoordSize, kTexcoordSize, [&](double x0, double, double x1, double) {
     return kSky * (x0 + x1 < 0.0 ? b.base : layered);
   });
   std::uint32_t seed = test_seed(47100);
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
     // The albedo integral's own error (midpoint rule) is below 1e-3 of it.
-    check_scene(kernels, scene, want, sky_settings(seed += 100), 1e-3);
+    check_scene(kernels, scene, want, texcoord_sky_settings(seed += 100), 1e-3);
   }
 }
 
@@ -275,17 +275,17 @@ TEST_CASE("KHR_materials_specular: specularColorTexture (sRGB) and specularTextu
   };
   Scene textured = plane_file("specular_color_texture", [&](GltfWriter& g) { return material(g, true); });
   Scene factors = plane_file("specular_color_factor", [&](GltfWriter& g) { return material(g, false); });
-  const ExpectedImage want(kSize * kSize, kSky * gltf_albedo(b, 1.0));
+  const ExpectedImage want(kTexcoordSize * kTexcoordSize, kSky * gltf_albedo(b, 1.0));
   std::uint32_t seed = test_seed(47200);
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
     {
       INFO("textures");
-      check_scene(kernels, textured, want, sky_settings(seed += 100), 1e-3);
+      check_scene(kernels, textured, want, texcoord_sky_settings(seed += 100), 1e-3);
     }
     {
       INFO("the same factors, no textures");
-      check_scene(kernels, factors, want, sky_settings(seed += 100), 1e-3);
+      check_scene(kernels, factors, want, texcoord_sky_settings(seed += 100), 1e-3);
     }
   }
 }

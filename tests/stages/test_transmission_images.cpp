@@ -27,7 +27,7 @@ using namespace pt::test;
 
 namespace {
 
-constexpr int kSize = 16;
+constexpr int kPlaneSize = 16;
 
 // The plane of 200 x 200 at y = 0 facing up with `b`'s factors and transmission t, a black
 // Lambert plane (specular 0) at y = -1 that takes whatever goes through, and a camera at
@@ -52,7 +52,7 @@ Scene transmissive_plane(const GltfBrdf& b, double t, const std::string& name) {
 
 // The same plane with transmissionFactor `factor` and a transmissionTexture of 2 x 1 texels
 // (NEAREST, clamped) over u = (x + 100) / 200: `left` for x < 0, `right` for x > 0. The
-// camera sees x < 0 in the left half of the image, which kSize even splits between pixels.
+// camera sees x < 0 in the left half of the image, which kPlaneSize even splits between pixels.
 Scene textured_plane(const GltfBrdf& b, double factor, uint left, uint right, const std::string& name) {
   GltfWriter g;
   int tex = image_texture(g, 2, 1, {left, right});
@@ -74,29 +74,10 @@ Scene textured_plane(const GltfBrdf& b, double factor, uint left, uint right, co
   return load_gltf(g.write(pt_test::scratch_dir("pt_transmission").string() + "/" + name + ".gltf"));
 }
 
-// Each pixel the mean over it of `value` of the direction of each of its points (3-point
-// Gauss-Legendre on 4 x 4 cells, as tests/stages/test_gltf_material_images.cpp).
-ExpectedImage plane_image_by_direction(const Scene& scene, const std::function<glm::dvec3(glm::dvec3)>& value) {
-  const double node[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
-  const double weight[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-  Camera cam = make_camera(scene, 1.0f);
-  return expected_image(kSize, kSize, [&](double x0, double y0, double x1, double y1) {
-    glm::dvec3 sum(0.0);
-    for (int i = 0; i < 12; i++) {
-      for (int j = 0; j < 12; j++) {
-        double sx = x0 + (x1 - x0) * (i / 3 + node[i % 3]) / 4.0, sy = y0 + (y1 - y0) * (j / 3 + node[j % 3]) / 4.0;
-        glm::dvec3 dir = glm::normalize(glm::dvec3(cam.forward) + sx * double(cam.extent_x) * glm::dvec3(cam.right) +
-                                        sy * double(cam.extent_y) * glm::dvec3(cam.up));
-        sum += value(dir) * (weight[i % 3] * weight[j % 3] / 16.0);
-      }
-    }
-    return sum;
-  });
-}
-
-// The same of `value` at the cosine each direction meets the plane.
-ExpectedImage plane_image(const Scene& scene, const std::function<glm::dvec3(double)>& value) {
-  return plane_image_by_direction(scene, [&](glm::dvec3 dir) { return value(-dir.y); });
+// The image of the plane when a direction seen at cosine c from the normal has radiance
+// `value(c)`.
+ExpectedImage transmissive_plane_image(const Scene& scene, const std::function<glm::dvec3(double)>& value) {
+  return expected_image_by_direction(scene, kPlaneSize, kPlaneSize, [&](glm::dvec3 dir) { return value(-dir.y); });
 }
 
 void check_plane(const GltfBrdf& b, double t, const std::string& name, std::uint32_t seed) {
@@ -104,10 +85,10 @@ void check_plane(const GltfBrdf& b, double t, const std::string& name, std::uint
   REQUIRE(scene.materials.at(0).kind == kMaterialDielectric);
   REQUIRE(scene.materials.at(0).transmission == float(t));
   MixtureTable table(b, t, 129);
-  ExpectedImage want = plane_image(scene, [&](double c) { return kSky * table.at(c); });
+  ExpectedImage want = transmissive_plane_image(scene, [&](double c) { return kSky * table.at(c); });
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
-    RenderSettings s = settings(kSize, kSize, 64, seed += 100);
+    RenderSettings s = settings(kPlaneSize, kPlaneSize, 64, seed += 100);
     s.sky = glm::vec3(kSky);
     // The tables' own error (midpoint rule, interpolation) is below 1e-3 of them.
     check_scene(kernels, scene, want, s, 1e-3);
@@ -143,12 +124,12 @@ TEST_CASE("transmissionTexture: a rough plane of transmissionFactor 1 whose text
   REQUIRE(scene.materials.at(0).kind == kMaterialDielectric);
   REQUIRE(scene.material_textures.at(0).transmission != kNoTexture);
   MixtureTable left(b, 128.0 / 255.0, 129), right(b, 0.0, 129);
-  ExpectedImage want =
-      plane_image_by_direction(scene, [&](glm::dvec3 dir) { return kSky * (dir.x < 0.0 ? left : right).at(-dir.y); });
+  ExpectedImage want = expected_image_by_direction(
+      scene, kPlaneSize, kPlaneSize, [&](glm::dvec3 dir) { return kSky * (dir.x < 0.0 ? left : right).at(-dir.y); });
   std::uint32_t seed = test_seed(47400);
   for (const StageKernels& kernels : path_tracing_stages()) {
     INFO(kernels.name);
-    RenderSettings s = settings(kSize, kSize, 64, seed += 100);
+    RenderSettings s = settings(kPlaneSize, kPlaneSize, 64, seed += 100);
     s.sky = glm::vec3(kSky);
     check_scene(kernels, scene, want, s, 1e-3);
   }

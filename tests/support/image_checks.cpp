@@ -149,6 +149,25 @@ ExpectedImage expected_image(int width, int height,
   return image;
 }
 
+ExpectedImage expected_image_by_direction(const Scene& scene, int width, int height,
+                                          const std::function<glm::dvec3(glm::dvec3)>& value) {
+  const double node[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
+  const double weight[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+  Camera cam = make_camera(scene, float(width) / float(height));
+  return expected_image(width, height, [&](double x0, double y0, double x1, double y1) {
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < 12; i++) {
+      for (int j = 0; j < 12; j++) {
+        double sx = x0 + (x1 - x0) * (i / 3 + node[i % 3]) / 4.0, sy = y0 + (y1 - y0) * (j / 3 + node[j % 3]) / 4.0;
+        glm::dvec3 dir = glm::normalize(glm::dvec3(cam.forward) + sx * double(cam.extent_x) * glm::dvec3(cam.right) +
+                                        sy * double(cam.extent_y) * glm::dvec3(cam.up));
+        sum += value(dir) * (weight[i % 3] * weight[j % 3] / 16.0);
+      }
+    }
+    return sum;
+  });
+}
+
 std::uint32_t ulps(float a, float b) {
   std::int32_t ia, ib;
   std::memcpy(&ia, &a, sizeof a);

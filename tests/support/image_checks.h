@@ -55,6 +55,14 @@ std::vector<Film> render_batches(const StageKernels& kernels, const Scene& scene
 ExpectedImage expected_image(int width, int height,
                              const std::function<glm::dvec3(double x0, double y0, double x1, double y1)>& pixel);
 
+// Expected image of `scene` through its camera when the radiance seen along each direction
+// is `value(direction)`: each pixel the mean of it over the pixel, by 3-point Gauss-Legendre
+// on 4 x 4 cells (the Fresnel term changes by a third across a pixel near the horizon: a
+// midpoint rule of 8 x 8 points is off by 1e-4 of it, above the float rounding that
+// stage5's exact samples show).
+ExpectedImage expected_image_by_direction(const Scene& scene, int width, int height,
+                                          const std::function<glm::dvec3(glm::dvec3 direction)>& value);
+
 // Student's t quantile: P(|T| > t) = alpha for dof degrees of freedom.
 double student_two_sided_quantile(double alpha, int dof);
 

@@ -20,6 +20,8 @@
 namespace fs = std::filesystem;
 using namespace pt;
 
+namespace test_film_checksum {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 fs::path scratch(const std::string& name) {
@@ -170,3 +172,5 @@ TEST_CASE("film parts: a header that claims another sample count than its film h
   reseal(moved);
   CHECK(refusal(moved).empty());
 }
+
+}  // namespace test_film_checksum

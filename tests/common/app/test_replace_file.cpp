@@ -23,6 +23,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_replace_file {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 fs::path scratch() { return pt_test::scratch_dir("pt_replace_file"); }
@@ -183,3 +185,5 @@ TEST_CASE("image output: a non-finite pixel is refused with exit 3 and the old i
   }
   CHECK(pt_test::read_file(p) == "old image");
 }
+
+}  // namespace test_replace_file

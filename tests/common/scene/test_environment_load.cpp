@@ -21,6 +21,8 @@
 
 namespace fs = std::filesystem;
 
+namespace test_environment_load {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 std::vector<float> random_rgb(uint w, uint h, std::uint32_t seed) {
@@ -221,3 +223,5 @@ TEST_CASE("environment loading: another extension is a bad option; a missing, br
   check_throws((dir / "empty.exr").string(), pt::kExitBadScene, "empty.exr");
   fs::remove_all(dir);
 }
+
+}  // namespace test_environment_load

@@ -18,6 +18,8 @@
 
 using pt::test::GltfWriter;
 
+namespace test_gltf_cameras {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 std::string scratch() { return pt_test::scratch_dir("pt_cameras").string(); }
@@ -162,3 +164,5 @@ TEST_CASE("cameras: a file with no camera is framed and said so; with no light t
   REQUIRE(r.code == 0);
   CHECK(r.err.find("no light") == std::string::npos);
 }
+
+}  // namespace test_gltf_cameras

@@ -22,6 +22,8 @@
 
 using namespace pt::test;
 
+namespace test_gltf_draws {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 std::filesystem::path dir() { return std::filesystem::temp_directory_path() / "pt_test_gltf_draws"; }
@@ -217,3 +219,5 @@ TEST_CASE("the file's scene is drawn, --gltf-scene picks another, and a missing 
   CHECK(message.find("--gltf-scene Nope: ") == 0);
   CHECK(message.find("its scenes: 0 'Main', 1 'Other'") != std::string::npos);
 }
+
+}  // namespace test_gltf_draws

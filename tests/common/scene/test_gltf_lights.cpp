@@ -24,6 +24,8 @@
 
 using pt::test::GltfWriter;
 
+namespace test_gltf_lights {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 std::string scratch() { return pt_test::scratch_dir("pt_lights").string(); }
@@ -151,3 +153,5 @@ TEST_CASE("lights: a spot with inner >= outer (Blender's Spot Blend 0) is a hard
     CHECK(scene.light_power == Approx(2.0 * M_PI * (1.0 - std::cos(outer))).margin(1e-9));
   }
 }
+
+}  // namespace test_gltf_lights

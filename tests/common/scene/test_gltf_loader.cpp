@@ -18,6 +18,8 @@
 
 using namespace pt::test;
 
+namespace test_gltf_loader {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 // Collects what is written to stderr (file descriptor 2) while it lives.
@@ -240,3 +242,5 @@ TEST_CASE("scenes/glossy_glass.gltf has its metal, glass, area light, point ligh
   check_point(scene.point_lights[0].intensity, {20, 18, 16});  // 13660 cd x its colour, at 683 lm/W
   CHECK(scene.camera.has_value());
 }
+
+}  // namespace test_gltf_loader

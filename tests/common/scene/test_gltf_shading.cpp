@@ -20,6 +20,8 @@
 using namespace pt;
 using pt::test::GltfWriter;
 
+namespace test_gltf_shading {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -146,3 +148,5 @@ TEST_CASE("shading normals: a triangle without UV area gets a tangent orthogonal
   }
   CHECK(std::isfinite(s.handedness0));
 }
+
+}  // namespace test_gltf_shading

@@ -19,6 +19,8 @@ using namespace pt;
 using namespace pt::test;
 using pt_test::rgba;
 
+namespace test_gltf_texcoord {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 const std::vector<glm::vec3> kQuad = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
@@ -126,3 +128,5 @@ TEST_CASE("KHR_materials_specular: a specular texture without an index or out of
     require_bad_scene(write(g, "bad_specular"), {"materials[0].extensions.KHR_materials_specular.specularColorTexture"});
   }
 }
+
+}  // namespace test_gltf_texcoord

@@ -19,6 +19,8 @@ using namespace pt;
 using namespace pt::test;
 using pt_test::rgba;
 
+namespace test_gltf_transmission_texture {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 const std::vector<glm::vec3> kQuad = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
@@ -95,3 +97,5 @@ TEST_CASE("a transmissionTexture without an index or out of range is exit 3, nam
                       {"materials[0].extensions.KHR_materials_transmission.transmissionTexture"});
   }
 }
+
+}  // namespace test_gltf_transmission_texture

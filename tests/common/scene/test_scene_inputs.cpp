@@ -22,6 +22,8 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 using namespace pt::test;
 
+namespace test_scene_inputs {  // this file's names: the unity build compiles it with others (tests/CMakeLists.txt)
+
 namespace {
 
 // A fresh folder for one test case (removed first if an earlier run left it).
@@ -275,3 +277,5 @@ TEST_CASE("inputs: instancing beyond what the BVH takes is refused before the tr
   require_bad_scene(save(dir / "copies.gltf", instanced_scene(300, 1000000)),
                     {"its nodes place 300000000 triangles", "more than the 268435456 the BVH takes"});
 }
+
+}  // namespace test_scene_inputs
