@@ -4,9 +4,8 @@
 // labs' grades, the stages' regression labels (ctest -L stage3) and the grader's choice of
 // the kernels a submission rebuilds (labs/ungraded.h) rest on those tags. A test that runs a
 // stage without its tag is named on stderr, and the run exits non-zero.
-// Wide enough that Catch2 never wraps a failure message inside a number ("9.\n66671").
-#define CATCH_CONFIG_CONSOLE_WIDTH 400
-#define CATCH_CONFIG_RUNNER
+// Catch2's listener interface (its implementation: catch_runner.cpp).
+#define CATCH_CONFIG_EXTERNAL_INTERFACES
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -16,6 +15,7 @@
 #include "common/scene/scene_loading.h"
 #include "cpu/cpu_backend.h"
 #include "stage1_raycast/kernels.h"
+#include "tests/catch_runner.h"
 #include "tests/support/test_render.h"
 
 namespace {
@@ -57,7 +57,7 @@ TEST_CASE("stage tags: a test that renders with stage1 but lacks its tag", "[.][
 }
 
 int main(int argc, char* argv[]) {
-  const int result = Catch::Session().run(argc, argv);
+  const int result = pt::test::run_catch(argc, argv);
   if (untagged_runs > 0) {
     std::fprintf(stderr, "%d test(s) ran a stage without its tag (docs/testing.md, section 8)\n", untagged_runs);
     return result != 0 ? result : 1;

@@ -1,10 +1,5 @@
 // main() of pt_gpu_tests: the image tests again, on the Vulkan backend. Where no Vulkan
 // device exists it says so and returns 77, which ctest reports as skipped.
-// Wide enough that Catch2 never wraps a failure message inside a number ("9.\n66671").
-#define CATCH_CONFIG_CONSOLE_WIDTH 400
-#define CATCH_CONFIG_RUNNER
-#include <catch2/catch.hpp>
-
 #include <cstdio>
 #include <string>
 
@@ -12,6 +7,7 @@
 #include "gpu/gpu_backend.h"
 #include "gpu/vulkan_context.h"
 #include "stage1_raycast/kernels.h"
+#include "tests/catch_runner.h"
 #include "tests/support/test_render.h"
 
 int main(int argc, char** argv) {
@@ -25,7 +21,7 @@ int main(int argc, char** argv) {
     return layer_missing ? 1 : 77;
   }
   pt::test::backend_under_test = "gpu";
-  int failed = Catch::Session().run(argc, argv);
+  int failed = pt::test::run_catch(argc, argv);
   pt::test::release_test_device();  // its destruction is checked by the validation layer too
   // PT_VULKAN_VALIDATION=1 (the ctest entry pt_gpu_tests_validation): any error the
   // validation layer reported fails the run.
