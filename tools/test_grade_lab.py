@@ -12,7 +12,7 @@ part of the article). Two parts:
     lab page's table "If a test fails" names a test of that lab (PT_TESTS --list-test-names-only);
     grades.csv quotes a field that holds the separator. Exit 77 (skipped) for the sandbox part
     where bubblewrap cannot run.
-  (default; ctest entry grade_lab, label grading; minutes) labs 2, 3 and 4 graded on fixture
+  (default; ctest entry grade_lab, label grading; minutes) every lab graded on fixture
     submissions made here from the reference functions, which are renamed and called by
     wrappers, so that no line of their bodies is quoted here (the handout ships this file
     without them). Each submission must get its verdict line; the other reference file of the
@@ -41,18 +41,19 @@ part of the article). Two parts:
 and a summary line, grades.csv and grades.xml with one row and one testcase per submission.
 Lab 4 (common/kernel/triangle_light.glsl, emission_rule.glsl): a_correct PASS, b_pdf_doubled and
 c_pdf_mismatch FAIL (the latter through the held-back test), each mutant FAIL.
-Lab 3 (common/kernel/cosine_hemisphere.glsl): a_correct PASS, b_syntax_error COMPILE ERROR, each
-mutant FAIL. Each lab's set-up builds the student's code into the kernels of stages 1-5 only.
+Labs 1, 3, 5 and 6 (grade_lab_checks/fixtures_small.py): a_correct PASS, b_syntax_error COMPILE
+ERROR, each mutant FAIL; lab 1, which has no mutants, c_dimmed and c_black_sky FAIL. Each lab's
+set-up builds the student's code into the kernels of stages 1-5 only.
 usage: tools/test_grade_lab.py --fast [PT_TESTS]
-       tools/test_grade_lab.py [WORK]   (WORK: lab 2's build, WORK_lab3 and WORK_lab4 lab 3's and 4's, kept between
-       runs; PT_GRADE_TEST_TIMEOUT: seconds for one lab 2 submission's tests, default 90;
-       PT_GRADE_TEST_LABS: the labs to grade, default "2,3,4")"""
+       tools/test_grade_lab.py [WORK]   (WORK: lab 2's build, WORK_labN lab N's, kept between runs;
+       PT_GRADE_TEST_TIMEOUT: seconds for one submission's tests (labs 1-3, 5, 6), default 90;
+       PT_GRADE_TEST_LABS: the labs to grade, default "1,2,3,4,5,6")"""
 import os
 import sys
 import tempfile
 
 from grade_lab_checks.fast import bad_usage, fast  # the parts of this test: tools/grade_lab_checks/
-from grade_lab_checks.graded import lab2, lab2_sandbox_alone, lab3, lab4
+from grade_lab_checks.graded import SMALL_LABS, lab2, lab2_sandbox_alone, lab4, small_lab
 
 
 def main():
@@ -66,14 +67,15 @@ def main():
         subs, out = os.path.join(tmp, "submissions"), os.path.join(tmp, "out")
         os.makedirs(subs)
         bad_usage(tmp)
-        labs = os.environ.get("PT_GRADE_TEST_LABS", "2,3,4").split(",")
+        labs = os.environ.get("PT_GRADE_TEST_LABS", "1,2,3,4,5,6").split(",")
         if "2" in labs:
             lab2(subs, out, work)
             lab2_sandbox_alone(os.path.join(tmp, "attacks"), os.path.join(tmp, "out_attacks"), work)
-        if "3" in labs:
-            lab3(os.path.join(tmp, "submissions_lab3"), os.path.join(tmp, "out_lab3"), work + "_lab3")
         if "4" in labs:
             lab4(os.path.join(tmp, "submissions_lab4"), os.path.join(tmp, "out_lab4"), work + "_lab4")
+        for lab in sorted(SMALL_LABS):
+            if str(lab) in labs:
+                small_lab(lab, os.path.join(tmp, f"submissions_lab{lab}"), os.path.join(tmp, f"out_lab{lab}"), f"{work}_lab{lab}")
     return 0
 
 

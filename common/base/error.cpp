@@ -7,11 +7,19 @@
 
 namespace pt {
 
+namespace {
+std::mutex warnings_mutex;
+std::set<std::string> warnings_given;
+}  // namespace
+
 void warn_once(const std::string& message) {
-  static std::mutex mutex;
-  static std::set<std::string> seen;
-  std::lock_guard<std::mutex> lock(mutex);
-  if (seen.insert(message).second) std::fprintf(stderr, "warning: %s\n", message.c_str());
+  std::lock_guard<std::mutex> lock(warnings_mutex);
+  if (warnings_given.insert(message).second) std::fprintf(stderr, "warning: %s\n", message.c_str());
+}
+
+void forget_warnings_given() {
+  std::lock_guard<std::mutex> lock(warnings_mutex);
+  warnings_given.clear();
 }
 
 }  // namespace pt

@@ -28,5 +28,8 @@ class Error : public std::runtime_error {
 
 // Prints "warning: <message>" on stderr the first time a message is given.
 void warn_once(const std::string& message);
+// Forgets the messages warn_once gave, so that each is printed again: for a test that counts
+// a loader's warnings whatever tests ran before it in the same process.
+void forget_warnings_given();
 
 }  // namespace pt

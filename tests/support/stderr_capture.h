@@ -1,6 +1,7 @@
 // Test support for the loader tests (tests/common/scene): what the code under test writes on
 // stderr, caught from file descriptor 2 for the life of the object (warnings of the glTF
-// loader are one line each, and a test counts them).
+// loader are one line each, and a test counts them). A capture starts with warn_once's
+// memory cleared: the count does not depend on which tests ran before in the process.
 #pragma once
 
 #include <unistd.h>
@@ -8,11 +9,14 @@
 #include <cstdio>
 #include <string>
 
+#include "common/base/error.h"
+
 namespace pt_test {
 
 class StderrCapture {
  public:
   StderrCapture() : file_(std::tmpfile()) {
+    pt::forget_warnings_given();
     std::fflush(stderr);
     saved_ = dup(2);
     dup2(fileno(file_), 2);

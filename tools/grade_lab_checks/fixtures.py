@@ -1,6 +1,6 @@
 """The fixture submissions of tools/test_grade_lab.py (tooling for teachers, not a part of the
 article): lab 2's, the attacks of issue 47 among them, and lab 4's, each made from the
-reference files without quoting a line of their bodies."""
+reference files without quoting a line of their bodies (labs 1, 3, 5 and 6: fixtures_small.py)."""
 import os
 
 from grade_lab_checks.support import REPO, reference, with_wrappers, write
@@ -144,28 +144,6 @@ def lab2_fixtures(folder, work=None, out=None):
         "m_roulette_times_p.glsl": survivor("1.0f / r"),
         "m_roulette_unweighted.glsl": survivor("1.0f"),
     }, also=reference(rel))
-
-
-def lab3_fixtures(folder):
-    """Lab 3's submissions: the correct one, one that does not compile, and each of its
-    known-wrong answers (labs/mutants.h), written as a student would."""
-    rel = "common/kernel/cosine_hemisphere.glsl"
-    renames = {"vec3 sample_cosine_hemisphere(vec2 u)": "reference_sampler",
-               "float cosine_hemisphere_pdf(float cos_theta)": "reference_pdf"}
-
-    def variant(sampler="return reference_sampler(u);", pdf="return reference_pdf(cos_theta);"):
-        return with_wrappers(rel, renames, f"vec3 sample_cosine_hemisphere(vec2 u) {{\n  {sampler}\n}}\n\n"
-                                           f"float cosine_hemisphere_pdf(float cos_theta) {{\n  {pdf}\n}}\n")
-
-    write(folder, {
-        "a_correct.glsl": reference(rel),
-        "b_syntax_error.glsl": variant(pdf="return reference_pdf(cos_theta)"),
-        # The disk's radius u.x instead of sqrt(u.x) (the reference's radius is sqrt of its u.x);
-        # the uniform sampler's pdf (lab 2's function); the pdf not normalised by pi.
-        "m_cosine_linear_radius.glsl": variant(sampler="return reference_sampler(vec2(u.x * u.x, u.y));"),
-        "m_cosine_pdf_uniform.glsl": variant(pdf="return uniform_hemisphere_pdf();"),
-        "m_cosine_pdf_no_pi.glsl": variant(pdf="return reference_pdf(cos_theta) * kPi;"),
-    })
 
 
 def lab4_fixtures(folder):

@@ -1,5 +1,5 @@
 """The slow part of tools/test_grade_lab.py (ctest entry grade_lab; tooling for teachers, not a
-part of the article): labs 2 and 4 graded by tools/grade_lab.py on the fixture submissions,
+part of the article): every lab graded by tools/grade_lab.py on the fixture submissions,
 each verdict line, the summary, grades.csv and grades.xml checked."""
 import csv
 import json
@@ -11,7 +11,8 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
-from grade_lab_checks.fixtures import lab2_fixtures, lab3_fixtures, lab4_fixtures, plants
+from grade_lab_checks.fixtures import lab2_fixtures, lab4_fixtures, plants
+from grade_lab_checks.fixtures_small import lab1_fixtures, lab3_fixtures, lab5_fixtures, lab6_fixtures
 from grade_lab_checks.support import REPO, TIMEOUT, TOOL, expect, written_mutants
 
 
@@ -103,10 +104,10 @@ def lab2(subs, out, work):
     graded_kernels(work, 2, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"])
 
 
-def graded_kernels(work, lab, stages, ungraded):
+def graded_kernels(work, lab, stages, ungraded, includer="stage2_montecarlo"):
     """The set-up built the student's code into the CPU kernels of stages (the tags of the lab's
     tests) only: the kernels of the ungraded stage folders have the traps (labs/ungraded.h) and
-    do not include labs/labLAB.glsl, so no submission rebuilt them."""
+    do not include labs/labLAB.glsl, so no submission rebuilt them; includer's kernel does."""
     setup = json.load(open(os.path.join(work, "setup.json"), encoding="utf-8"))
     expect(setup.get("stages") == stages, f"lab {lab}'s set-up names the stages its tests run: {stages}",
            setup.get("stages"))
@@ -118,8 +119,8 @@ def graded_kernels(work, lab, stages, ungraded):
         depfile = os.path.join(build, "CMakeFiles", f"pt_{folder}.dir", folder, "cpu_kernel_v0.cpp.o.d")
         expect(os.path.isfile(depfile) and f"labs/lab{lab}.glsl" not in open(depfile, encoding="utf-8").read(),
                f"{folder}'s CPU kernel does not include labs/lab{lab}.glsl")
-    depfile = os.path.join(build, "CMakeFiles", "pt_stage2_montecarlo.dir", "stage2_montecarlo", "cpu_kernel_v0.cpp.o.d")
-    expect(f"labs/lab{lab}.glsl" in open(depfile, encoding="utf-8").read(), "stage2's CPU kernel includes the student's file")
+    depfile = os.path.join(build, "CMakeFiles", f"pt_{includer}.dir", includer, "cpu_kernel_v0.cpp.o.d")
+    expect(f"labs/lab{lab}.glsl" in open(depfile, encoding="utf-8").read(), f"{includer}'s CPU kernel includes the student's file")
 
 
 def lab2_sandbox_alone(subs, out, work):
@@ -144,20 +145,30 @@ def lab2_sandbox_alone(subs, out, work):
     no_pictures_in_repository()
 
 
-def lab3(subs, out, work):
-    """Lab 3's fixtures: the correct one passes, the one that does not compile says where, each
-    known-wrong answer fails with a suspect; the student's code only in the kernels of the
-    stages lab 3's tests run."""
+# The labs of one or two short functions: their fixtures, the wrong answers that are not
+# mutants of labs/mutants.h (each FAIL), and the stage whose CPU kernel includes the lab's file.
+SMALL_LABS = {
+    1: (lab1_fixtures, ["c_dimmed", "c_black_sky"], "stage1_raycast"),
+    3: (lab3_fixtures, [], "stage2_montecarlo"),
+    5: (lab5_fixtures, [], "stage2_montecarlo"),
+    6: (lab6_fixtures, [], "stage5_mis"),
+}
+
+
+def small_lab(lab, subs, out, work):
+    """Lab 1, 3, 5 or 6: the correct file passes, the one that does not compile says where, each
+    wrong answer fails with a suspect; the student's code only in the kernels of the stages the
+    lab's tests run."""
+    fixtures, wrong, includer = SMALL_LABS[lab]
     os.makedirs(subs)
-    lab3_fixtures(subs)
-    mutants = written_mutants(subs, 3)
-    expected = {"a_correct": r"PASS", "b_syntax_error": r"COMPILE ERROR labs/lab3\.glsl:\d+(:\d+)?: error: .*"}
-    for mutant in mutants:
-        expected["m_" + mutant] = FAIL
-    lines, summary = grade(3, subs, out, work, TIMEOUT)
+    fixtures(subs)
+    expected = {"a_correct": r"PASS", "b_syntax_error": rf"COMPILE ERROR labs/lab{lab}\.glsl:\d+(:\d+)?: error: .*"}
+    for name in wrong + ["m_" + m for m in written_mutants(subs, lab)]:
+        expected[name] = FAIL
+    lines, summary = grade(lab, subs, out, work, TIMEOUT)
     check_lines(lines, expected)
     check_summary(summary, expected)
-    graded_kernels(work, 3, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"])
+    graded_kernels(work, lab, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"], includer)
 
 
 def lab4(subs, out, work):
