@@ -32,9 +32,10 @@
 #pragma GCC diagnostic ignored "-Wunused-variable"
 
 namespace {
-namespace kernel {  // hit_triangle()'s constants and types, box_slab.glsl's constants
+namespace kernel {  // hit_triangle()'s constants and types, the slab test's margins
 #include "cpu/kernel_begin.h"
-#include "common/kernel/box_slab.glsl"
+#include "common/kernel/box_pad.glsl"
+#include "common/kernel/intersect.glsl"
 #include "cpu/triangle_lane_ops.h"
 }  // namespace kernel
 

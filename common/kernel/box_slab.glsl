@@ -5,15 +5,8 @@
 #ifndef PT_BOX_SLAB_GLSL
 #define PT_BOX_SLAB_GLSL
 
+#include "common/kernel/box_pad.glsl"
 #include "common/kernel/intersect.glsl"
-
-// The box grows by this fraction of its corners' distance from the ray origin (summed over
-// the axes) before the slab test: the watertight triangle test decides with errors of a
-// few kGamma5 of that distance (intersect.glsl), so a triangle it hits lies inside the
-// grown box, whatever the float rounding of either test (2^-15, about 100 kGamma5).
-const float kBoxPad = 3.0517578e-05f;
-// pbrt's 1 + 2 gamma(3): the far distance of a slab, rounded up past its own rounding.
-const float kBoxRoundUp = 1.00000036f;
 
 // 1 / dir, with the infinities of a zero component made the largest float: then a box
 // corner at distance 0 along that axis gives 0, not 0 * inf = NaN, and the ray inside the

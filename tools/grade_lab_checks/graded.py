@@ -146,12 +146,15 @@ def lab2_sandbox_alone(subs, out, work):
 
 
 # The labs of one or two short functions: their fixtures, the wrong answers that are not
-# mutants of labs/mutants.h (each FAIL), and the stage whose CPU kernel includes the lab's file.
+# mutants of labs/mutants.h (each FAIL), a stage whose CPU kernel includes the lab's file, and
+# the stages the lab's tests run (their tags; the other stages' kernels get the traps).
+STAGE_FOLDERS = ["stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect", "stage5_mis",
+                 "stage6_variance_aware"]
 SMALL_LABS = {
-    1: (lab1_fixtures, ["c_dimmed", "c_black_sky"], "stage1_raycast"),
-    3: (lab3_fixtures, [], "stage2_montecarlo"),
-    5: (lab5_fixtures, [], "stage2_montecarlo"),
-    6: (lab6_fixtures, [], "stage5_mis"),
+    1: (lab1_fixtures, ["c_dimmed", "c_black_sky"], "stage1_raycast", range(1, 6)),
+    3: (lab3_fixtures, [], "stage2_montecarlo", range(1, 6)),
+    5: (lab5_fixtures, [], "stage2_montecarlo", range(1, 5)),
+    6: (lab6_fixtures, [], "stage5_mis", range(1, 6)),
 }
 
 
@@ -159,7 +162,7 @@ def small_lab(lab, subs, out, work):
     """Lab 1, 3, 5 or 6: the correct file passes, the one that does not compile says where, each
     wrong answer fails with a suspect; the student's code only in the kernels of the stages the
     lab's tests run."""
-    fixtures, wrong, includer = SMALL_LABS[lab]
+    fixtures, wrong, includer, stages = SMALL_LABS[lab]
     os.makedirs(subs)
     fixtures(subs)
     expected = {"a_correct": r"PASS", "b_syntax_error": rf"COMPILE ERROR labs/lab{lab}\.glsl:\d+(:\d+)?: error: .*"}
@@ -168,7 +171,7 @@ def small_lab(lab, subs, out, work):
     lines, summary = grade(lab, subs, out, work, TIMEOUT)
     check_lines(lines, expected)
     check_summary(summary, expected)
-    graded_kernels(work, lab, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"], includer)
+    graded_kernels(work, lab, [f"stage{k}" for k in stages], STAGE_FOLDERS[max(stages):], includer)
 
 
 def lab4(subs, out, work):

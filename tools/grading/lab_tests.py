@@ -19,8 +19,8 @@ from . import TEST_TARGET, die
 #   labs 2-4: pt_compare's tests of a stage ([compare]) render both of their sides with the
 #          student's stage, so they grade pt_compare, not the student;
 #   labs 2-3: the sampler checks' own mutation tests ([mutants]) never call the student's code;
-#   lab 5: the BVH build ([#test_bvh]), the CPU's SIMD walk (cpu/wide_bvh_walk.cpp compiles
-#          the reference box_slab.glsl, [#test_wide_bvh]), the summary line ([cli]), the
+#   lab 5: the BVH build ([#test_bvh]), the CPU's SIMD walk (cpu/wide_bvh_walk.cpp holds its
+#          own copy of the reference slab test, [#test_wide_bvh]), the summary line ([cli]), the
 #          icosphere ([scene]) and the storage-buffer limit ([reliability]);
 #   lab 6: the spherical triangles and the light sample by solid angle ([solid_angle]), which
 #          neither weigh a sample nor ask light_pdf.
