@@ -121,6 +121,13 @@ def report_checks():
     expect(read_report(doc.encode(), ["a; b, c"]).problem is not None, "a test the lab does not run is refused")
     cut = read_report(doc[:doc.index("<OverallResult success=\"false")].encode(), ["a; b, c", "d"])
     expect(not cut.whole and cut.running == "d" and cut.problem is None, "a report cut short names the running test")
+    # Cut at the cap in the middle of a test whose check fails on every pixel: its first failure
+    # is kept (the grader's FAIL, not REFUSED, tools/grading/submission.py).
+    expect(cut.running_failure == "its check mean == 2 failed with 1.013 == 2",
+           "a report cut short keeps the running test's first failure", repr(cut.running_failure))
+    fine = read_report(doc[:doc.index("<TestCase name=\"d\"") + 40].encode(), ["a; b, c", "d"])
+    expect(fine.running == "d" and fine.running_failure is None, "a running test with no failed check has none",
+           repr(fine.running_failure))
 
 
 def hint_tables(pt_tests):

@@ -133,6 +133,9 @@ class Report:
     def __init__(self):
         self.cases, self.running, self.whole, self.problem = [], None, False, None
         self.durations = {}  # seconds per finished test, where Catch2 gave them (-d yes)
+        # Why the unfinished test had failed when the report was cut short, if it had: a check
+        # failing in a loop over pixels fills the report's cap with its failures.
+        self.running_failure = None
 
 
 def read_report(data, expected):
@@ -144,7 +147,7 @@ def read_report(data, expected):
     if text.strip() and (start < 0 or text[:start].strip()):
         rep.problem = "the report pipe holds text before Catch2's report"
     parser = ET.XMLPullParser(events=("start", "end"))
-    ended, closing = False, False
+    ended, closing, current = False, False, None
     try:
         # Line by line, so that what follows the end of the first document is told apart.
         for piece in text[max(start, 0):].splitlines(keepends=True) + [None]:
@@ -159,7 +162,7 @@ def read_report(data, expected):
                 if el.tag != "TestCase":
                     continue
                 if event == "start":
-                    rep.running = el.get("name")
+                    rep.running, current = el.get("name"), el
                 else:
                     result = el.find("OverallResult")
                     ok = result is not None and result.get("success") == "true"
@@ -177,6 +180,9 @@ def read_report(data, expected):
             rep.problem = f"the report pipe holds more than Catch2's report ({short(str(e), 80)})"
         elif not closing:  # not cut short: broken inside
             rep.problem = f"the report is not well-formed ({short(str(e), 80)})"
+    if rep.running is not None and current is not None:  # the part of it that came
+        why = failure_reason(current)
+        rep.running_failure = None if why.startswith("it failed (no check") else why
     names = [n for n, _, _ in rep.cases]
     unknown = sorted(set(names) - set(expected))
     twice = sorted({n for n in names if names.count(n) > 1})

@@ -82,12 +82,15 @@ def record_durations(path, durations):
 
 def merge_reports(reports, order):
     """One Report of the shards' (order: the lab's test names, in the order one run would give
-    them): the cases of all, whole when each is, the unfinished test and the first problem."""
+    them): the cases of all, whole when each is, the unfinished test (and why it had failed) and the
+    first problem."""
     rep = Report()
     rank = {name: k for k, name in enumerate(order)}
     rep.cases = sorted((c for r in reports for c in r.cases), key=lambda c: rank.get(c[0], len(rank)))
     rep.whole = all(r.whole for r in reports)
-    rep.running = next((r.running for r in reports if r.running), None)
+    # The unfinished test: one that had failed when its report was cut short, if a shard has it.
+    cut = next((r for r in reports if r.running_failure), None) or next((r for r in reports if r.running), None)
+    rep.running, rep.running_failure = (cut.running, cut.running_failure) if cut else (None, None)
     rep.problem = next((r.problem for r in reports if r.problem), None)
     rep.durations = {n: s for r in reports for n, s in r.durations.items()}
     return rep

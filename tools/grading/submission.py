@@ -221,8 +221,15 @@ def judge(g, ctx, r, rep, written):
     g.passed = sum(1 for _, ok, _ in rep.cases if ok)
     died = (r.rc < 0 or r.rc > 128) and not rep.whole
     sig = -r.rc if r.rc < 0 else r.rc - 128
-    if r.over_cap:
-        cap = {"stdout": TEST_LIMITS.stdout_cap, "stderr": TEST_LIMITS.stderr_cap, "report": TEST_LIMITS.stdout_cap}
+    cap = {"stdout": TEST_LIMITS.stdout_cap, "stderr": TEST_LIMITS.stderr_cap, "report": TEST_LIMITS.stdout_cap}
+    if r.over_cap == "report" and rep.running_failure and not rep.problem:
+        # A wrong answer whose check fails in a loop (every pixel) fills the report: FAIL, with
+        # the first failure of that test (never PASS: its report was cut short).
+        g.verdict = "FAIL"
+        failed = [(n, why) for n, ok, why in rep.cases if not ok]
+        why = f"{rep.running_failure}, and so often that the report passed {cap['report'] // MiB} MB"
+        explain_failures(g, ctx, rep, [(rep.running, why)] + failed, r)
+    elif r.over_cap:
         g.verdict, g.detail = "REFUSED", f"the tests printed more than {cap[r.over_cap] // MiB} MB on {r.over_cap}"
     elif written > FOLDER_CAP:
         g.verdict, g.detail = "REFUSED", f"the tests wrote {written // MiB} MB into their folder (at most {FOLDER_CAP // MiB} MB)"
