@@ -47,7 +47,7 @@ TEST_CASE("stability: the floor under a square light renders its closed form at 
       Scene scene = analytic::make_floor_light(a);
       transform_scene(scene, c.scale, c.offset);
       build_light_table(scene);
-      RenderSettings s = settings(size, size, 1024, test_seed(4000));
+      RenderSettings s = settings(size, size, 512, test_seed(4000));
       s.roulette = kRouletteThroughput;
       INFO(kernels.name << ", scale " << c.scale << ", offset " << c.offset.x);
       // Moved 1e5 the scene's points snap to a float grid of 0.0078 (in a view 3 wide): the

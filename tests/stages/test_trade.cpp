@@ -91,16 +91,18 @@ Scene furnace() { return analytic::make_furnace({}); }
 
 }  // namespace
 
-// 20 seeds x 256 pixels (64 at 4096 spp) are 5,120 (1,280) squared errors: their mean is
+// 20 seeds x 256 pixels (64 at 2048 spp) are 5,120 (1,280) squared errors: their mean is
 // known to about 3% (6%), the RMSE to half that, so +-20% is 6 or more standard errors.
+// (8x8 pixels, not fewer, at 2048 spp: a 6x6 film at 4096 spp made sobol's error 0.72 of
+// the printed one, a gain of its points on that film that the halves' figure does not see.)
 // Under sobol the furnace's paths of many bounces gain little from the points' cover: the
 // halves' figure holds the printed error within 20% there too (measured 0.98 to 1.01).
 TEST_CASE("trade: the printed per-pixel error is within 20% of the measured one over 20 seeds, furnace",
           "[stage3][trade][statistical]") {
   const int runs = 20;
   for (std::uint32_t sampler : {kSamplerIndependent, kSamplerSobol}) {
-    for (std::uint64_t spp : {16u, 256u, 4096u}) {
-      int size = spp >= 4096 ? 8 : 16;
+    for (std::uint64_t spp : {16u, 256u, 2048u}) {
+      int size = spp >= 2048 ? 8 : 16;
       INFO(spp << " spp, " << size << "x" << size);
       RenderSettings s = settings(size, size, spp, test_seed(5000 + std::uint32_t(spp) + 100 * sampler));
       s.roulette = kRouletteThroughput;
@@ -227,26 +229,26 @@ TEST_CASE("trade: --target-error 0.05 ends with a measured per-pixel error of at
   CHECK(std::sqrt(measured2 / runs) <= 0.055);
 }
 
-TEST_CASE("trade: the estimated error is honest and --target-error 0.01 ends below about 0.015 measured",
+TEST_CASE("trade: the estimated error is honest and --target-error 0.02 ends below about 0.03 measured",
           "[stage3][trade][statistical]") {
   analytic::FurnaceScene furnace;
   furnace.albedo = 0.8f;  // answer 5
   Scene scene = analytic::make_furnace(furnace);
-  // A correct estimator reaches the target at about 8,000 samples per pixel, its paths ended
+  // A correct estimator reaches the target at about 2,000 samples per pixel, its paths ended
   // by the roulette after a few bounces. The caps, four times that and 64 bounces (0.8^64 <
   // 1e-6 of the answer), only bound the time a wrong one takes to fail: an estimator whose
   // weights average above 1 (lab 3's mutant cosine_pdf_uniform) never ends a path by the
   // roulette nor reaches the target, and the first run that misses it ends the test.
-  RenderSettings s = settings(4, 4, 4 * 8192, test_seed(3000));
+  RenderSettings s = settings(4, 4, 4 * 2048, test_seed(3000));
   s.roulette = kRouletteThroughput;
   s.depth_cap = 64;
-  s.target_error = 0.01;
+  s.target_error = 0.02;
   int below = 0, honest = 0;
   const int runs = 20;
   for (int i = 0; i < runs; i++, s.seed++) {
     RenderResult r = render_on_test_backend(stage3::kernels(), scene, s);
-    REQUIRE(r.film.per_pixel_relative_error() <= 0.01);
-    below += measured_per_pixel_error(r.film, std::vector<double>(16, 5.0)) < 0.015;
+    REQUIRE(r.film.per_pixel_relative_error() <= 0.02);
+    below += measured_per_pixel_error(r.film, std::vector<double>(16, 5.0)) < 0.03;
     // The image mean's error: a standard error says where the error usually is, within a
     // factor 2 of it, or below it (an error much smaller than its standard error is luck,
     // not dishonesty).
