@@ -22,13 +22,17 @@ from . import TEST_TARGET, die
 #   lab 5: the BVH build ([#test_bvh]), the CPU's SIMD walk (cpu/wide_bvh_walk.cpp holds its
 #          own copy of the reference slab test, [#test_wide_bvh]), the summary line ([cli]), the
 #          icosphere ([scene]) and the storage-buffer limit ([reliability]);
+#   lab 4: the Cornell box's trade test, 27 of the 63 s of a correct submission's tests (one
+#          core): it checks the film's error estimate against a long render of a scene with no
+#          closed form, which the floor's trade test checks in closed form on the same stage,
+#          and every mistake of labs/mutants.h fails another test first;
 #   lab 6: the spherical triangles and the light sample by solid angle ([solid_angle]), which
 #          neither weigh a sample nor ask light_pdf.
 EXCLUDED = {
     1: [],
     2: ["[ggx]", "[energy]", '"sampling: a mixed material*"', "[compare]", "[mutants]"],
     3: ["[ggx]", "[compare]", "[mutants]"],
-    4: ["[compare]"],
+    4: ["[compare]", '"trade: the printed per-pixel error is within 20% of the measured one over 20 or 40 seeds*"'],
     5: ["[#test_bvh]", "[#test_wide_bvh]", "[cli]", "[scene]", "[reliability]"],
     6: ["[solid_angle]"],
 }
