@@ -6,7 +6,7 @@ repository without .git and build folders, in which
     labs/labN.glsl, see cmake/Labs.cmake) is removed from their bodies, and the chapters'
     excerpts of them too, so the answer is not handed out with the question;
   - other copies of that answer, marked in the source as a region between a line holding
-    [lab N answer] and one holding [/lab N answer] (cpu/wide_bvh_walk.cpp: lab 5's slab test
+    [lab N answer] and one holding [/lab N answer] (cpu/wide_bvh_walk_lanes.h: lab 5's slab test
     on SIMD lanes), are cut, markers included;
   - the teacher's held-back tests, every Catch2 TEST_CASE in tests/ tagged [held_back] (with
     the comment lines just above it; a file whose every test is held back keeps only its

@@ -19,7 +19,7 @@ from . import TEST_TARGET, die
 #   labs 2-4: pt_compare's tests of a stage ([compare]) render both of their sides with the
 #          student's stage, so they grade pt_compare, not the student;
 #   labs 2-3: the sampler checks' own mutation tests ([mutants]) never call the student's code;
-#   lab 5: the BVH build ([#test_bvh]), the CPU's SIMD walk (cpu/wide_bvh_walk.cpp holds its
+#   lab 5: the BVH build ([#test_bvh]), the CPU's SIMD walk (cpu/wide_bvh_walk_lanes.h holds its
 #          own copy of the reference slab test, [#test_wide_bvh]), the summary line ([cli]), the
 #          icosphere ([scene]) and the storage-buffer limit ([reliability]);
 #   lab 4: the Cornell box's trade test, 27 of the 63 s of a correct submission's tests (one
