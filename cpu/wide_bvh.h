@@ -22,8 +22,9 @@ constexpr int kWideWidth = 8;  // children per node, triangles per leaf block
 // A node's child: >= 0 a node, < 0 the leaf block ~child, kWideEmpty an unused slot.
 constexpr std::int32_t kWideEmpty = INT32_MIN;
 
-// 8 children: their boxes (as the binary tree's nodes have them) axis by axis, and refs.
-struct WideNode {
+// 8 children: their boxes (as the binary tree's nodes have them) axis by axis, and refs;
+// aligned to cache lines (256 bytes), so that no 32-byte load of the walk straddles two.
+struct alignas(64) WideNode {
   float lo[3][kWideWidth];
   float hi[3][kWideWidth];
   std::int32_t child[kWideWidth];
@@ -31,8 +32,8 @@ struct WideNode {
 
 // A leaf's triangles as arrays: v[3 p + k][i] is axis k of vertex p of lane i's triangle;
 // index[i] its index in the scene's triangles[], -1 for an empty lane (all zeros: its zero
-// determinant rejects it, as TriangleSoa's padding).
-struct WideBlock {
+// determinant rejects it, as TriangleSoa's padding). 320 bytes, aligned to cache lines too.
+struct alignas(64) WideBlock {
   float v[9][kWideWidth];
   std::int32_t index[kWideWidth];
 };
