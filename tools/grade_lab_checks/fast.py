@@ -3,6 +3,7 @@ teachers, not a part of the article): bad usage, no bubblewrap, the source check
 sandbox's walls, the report, the tests' shards, the lab pages' hint tables, the CSV's quoting,
 the rebuilds."""
 import csv
+import json
 import os
 import shutil
 import subprocess
@@ -177,12 +178,13 @@ def rebuilt_outputs(tmp):
     expect(dependents(build, lab) == set(outputs), "dependents() is what put_lab_file deletes")
 
 
-def shard_checks(pt_tests):
+def shard_checks(pt_tests, tmp):
     """The shards a submission's tests run in (grading/shards.py): the spec's terms, a split of
-    about equal time, the reports merged in the one run's order; and, with the real pt_tests,
-    that lab 2's tests listed file by file are its tests, each once."""
+    about equal time, the durations the repository ships under the ones a work folder recorded,
+    the reports merged in the one run's order; and, with the real pt_tests, that lab 2's tests
+    listed file by file are its tests, each once."""
     from grading.lab_tests import read_report, test_names
-    from grading.shards import merge_reports, plan, shard_specs, spec_terms, tests_by_file
+    from grading.shards import merge_reports, plan, read_durations, shard_specs, spec_terms, tests_by_file
     from grading.lab_tests import test_files
     spec = '[stage2]~[ggx]~"sampling: a mixed, material*",[sampling]~[ggx]'
     expect(spec_terms(spec) == ['[stage2]~[ggx]~"sampling: a mixed, material*"', "[sampling]~[ggx]"],
@@ -194,6 +196,16 @@ def shard_checks(pt_tests):
            repr(groups))
     expect(plan(by_file, {}, 8) == [["d"], ["a"], ["b"], ["c"]], "no more shards than files; before any time, a test counts 1",
            repr(plan(by_file, {}, 8)))
+    recorded = os.path.join(tmp, "test_durations.json")
+    shipped = read_durations(recorded, 2)
+    name = next(iter(shipped), None)
+    expect(len(shipped) > 10 and all(s >= 0 for s in shipped.values()), "the repository ships lab 2's durations",
+           repr(len(shipped)))
+    with open(recorded, "w", encoding="utf-8") as fh:
+        json.dump({name: 1234.5}, fh)
+    merged = read_durations(recorded, 2)
+    expect(merged[name] == 1234.5 and len(merged) == len(shipped) and read_durations(recorded) == {name: 1234.5},
+           "a work folder's recorded durations win over the shipped ones, which fill in the rest", repr(merged.get(name)))
     one = ('<?xml version="1.0" encoding="UTF-8"?>\n<Catch name="t">\n  <Group name="t">\n'
            '    <TestCase name="{}" tags="[x]">\n      <OverallResult success="true" durationInSeconds="1.5"/>\n'
            '    </TestCase>\n  </Group>\n</Catch>\n')
@@ -219,7 +231,7 @@ def fast(pt_tests):
         no_sandbox_refused(tmp)
         source_checks(tmp)
         report_checks()
-        shard_checks(pt_tests)
+        shard_checks(pt_tests, tmp)
         hint_tables(pt_tests)
         csv_quoting(tmp)
         sealed = sandbox_checks(tmp)

@@ -190,7 +190,7 @@ def run_tests(g, ctx):
     box, by_file = ctx["sandbox"], ctx.get("by_file") or {}
     run = fresh_run_folder(g, ctx)
     env = {"PT_TEST_PICTURES": os.path.join(run, "test_pictures")}
-    groups = plan(by_file, read_durations(ctx["durations"]), ctx["args"].jobs) if by_file else [None]
+    groups = plan(by_file, read_durations(ctx["durations"], ctx["args"].lab), ctx["args"].jobs) if by_file else [None]
 
     def shard(files):
         specs = ctx["specs"] if files is None else shard_specs(ctx["specs"], files)
