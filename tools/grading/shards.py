@@ -6,7 +6,8 @@ and merges what they report. A shard is a set of test files: Catch2's [#file] ta
 escaping, where a test's name may hold the ',' that a spec cannot. The split follows each test's
 duration in the last submission that passed (WORK/test_durations.json), over the durations the
 repository ships (typical_durations.json, beside this file: seconds per test of each lab's correct
-submission on the project's 2-core machine, 2026-12-07), so that the first submission after a
+submission on the project's 2-core machine, 2026-12-07; the held-back tests left out, whose names
+the students do not see), so that the first submission after a
 fresh set-up is split as well as the next (issue #47: lab 4's took 32.4 s, the next 28.3 s); a
 test in neither counts as the mean of the known."""
 import json
