@@ -230,9 +230,9 @@ def main():
 
 
 def compiled_units(dest, rel):
-    """The .cpp files of rel's folder that compile rel: rel itself, or for a header (or a .cpp
-    included by others, as cpu/wide_bvh_walk.cpp is once per instruction set) the files that
-    #include it, to two levels."""
+    """The .cpp files of rel's folder that compile rel: rel itself when it is one; for a header,
+    the files that #include it and those that #include them (cpu/wide_bvh_walk_lanes.h is in
+    wide_bvh_walk.cpp, which the AVX2 and AVX-512 copies include)."""
     if rel.endswith(".cpp"):
         return [rel]
     folder = os.path.dirname(rel)
