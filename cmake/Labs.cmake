@@ -42,6 +42,19 @@ if(PT_LAB AND PT_LAB_CHECK)
   message(FATAL_ERROR "PT_LAB and PT_LAB_CHECK exclude each other: use PT_LAB=N for a student's build, PT_LAB_CHECK=ON for the CI check")
 endif()
 
+# The grader's #include of labs/labN.glsl (PT_LAB_GRADING), in out_var: GCC does not inline a
+# function whose optimize options differ from its caller's, so the student's functions keep
+# frames of their own, which name the one an endless loop is in (tools/grading/stuck.py). The
+# handout's #includes come first, outside the pragma: the kernel's own functions in them stay
+# inlined (read without a configure dependency: the file is the student's).
+function(pt_lab_out_of_line lab out_var)
+  file(STRINGS ${PROJECT_SOURCE_DIR}/labs/lab${lab}.glsl includes REGEX "^#include \"(common|labs)/[a-z_0-9/]+\\.glsl\"$")
+  list(JOIN includes "\n" includes)
+  string(CONCAT text "${includes}\n#ifdef __cplusplus\n#pragma GCC push_options\n#pragma GCC optimize(\"no-ipa-cp\")\n#endif\n"
+                "#include \"labs/lab${lab}.glsl\"\n#ifdef __cplusplus\n#pragma GCC pop_options\n#endif\n")
+  set(${out_var} "${text}" PARENT_SCOPE)
+endfunction()
+
 # Which file defines the functions each lab asks for: the reference, or the student's.
 set(PT_KERNEL_GENERATED_DIR ${PROJECT_BINARY_DIR}/generated)
 set(definitions "")
@@ -55,18 +68,12 @@ foreach(pair 2:common/kernel/uniform_hemisphere.glsl 2:common/kernel/russian_rou
   if(PT_LAB EQUAL lab)
     if(NOT definitions MATCHES "labs/lab${lab}.glsl")
       if(PT_LAB_GRADING)
-        # GCC does not inline a function whose optimize options differ from its caller's. The
-        # handout's #includes come first, outside the pragma: the kernel's own functions in
-        # them stay inlined (read without a configure dependency: the file is the student's).
         # A stage's CPU kernel that none of the lab's tests runs (PT_LAB_UNGRADED_KERNEL,
         # cmake/PtStage.cmake) gets the traps of labs/ungraded.h instead, so that it does not
         # include the student's file and a submission does not rebuild it.
-        file(STRINGS ${PROJECT_SOURCE_DIR}/labs/lab${lab}.glsl includes REGEX "^#include \"(common|labs)/[a-z_0-9/]+\\.glsl\"$")
-        list(JOIN includes "\n" includes)
-        string(APPEND definitions "${includes}\n#if defined(__cplusplus) && defined(PT_LAB_UNGRADED_KERNEL)\n"
-                                  "#include \"labs/ungraded.h\"\n#else\n"
-                                  "#ifdef __cplusplus\n#pragma GCC push_options\n#pragma GCC optimize(\"no-ipa-cp\")\n#endif\n"
-                                  "#include \"labs/lab${lab}.glsl\"\n#ifdef __cplusplus\n#pragma GCC pop_options\n#endif\n#endif\n")
+        pt_lab_out_of_line(${lab} include)
+        string(APPEND definitions "#if defined(__cplusplus) && defined(PT_LAB_UNGRADED_KERNEL)\n"
+                                  "#include \"labs/ungraded.h\"\n#else\n${include}#endif\n")
       else()
         string(APPEND definitions "#include \"labs/lab${lab}.glsl\"\n")
       endif()
@@ -86,14 +93,21 @@ file(CONFIGURE OUTPUT ${PT_KERNEL_GENERATED_DIR}/kernel_definitions.glsl CONTENT
 #define PT_KERNEL_DEFINITIONS_GLSL
 ${definitions}#endif
 ")
-if(PT_LAB OR PT_LAB_CHECK)
-  # The stubs' loud failure on the CPU (labs/lab_support.glsl) calls into this header.
-  add_compile_options(-include ${PROJECT_SOURCE_DIR}/labs/lab_hooks.h)
-  add_compile_definitions(PT_LAB=${PT_LAB})
-  if(PT_LAB)
-    message(STATUS "Lab ${PT_LAB}: built with the student's labs/lab${PT_LAB}.glsl; grade with ctest -L lab${PT_LAB}")
+# The lab builds' compile options: the stubs' loud failure on the CPU (labs/lab_support.glsl)
+# calls into labs/lab_hooks.h. Only the kernels include the labs' code, so only the targets
+# made after this call (the stages, the tests, the bench) get them: the root CMakeLists.txt
+# calls it after the libraries common/, cpu/ and gpu/ and the film's tools, which are then
+# compiled with the same command lines as the Release build's, and a compiler cache that
+# holds that build's objects serves a lab's set-up too (tools/grade_lab.py --compiler-cache).
+function(pt_lab_compile_options)
+  if(PT_LAB OR PT_LAB_CHECK)
+    add_compile_options(-include ${PROJECT_SOURCE_DIR}/labs/lab_hooks.h)
+    add_compile_definitions(PT_LAB=${PT_LAB})
   endif()
-endif()
-if(PT_LAB_CHECK)
-  add_compile_definitions(PT_LAB_CHECK)
+  if(PT_LAB_CHECK)
+    add_compile_definitions(PT_LAB_CHECK)
+  endif()
+endfunction()
+if(PT_LAB)
+  message(STATUS "Lab ${PT_LAB}: built with the student's labs/lab${PT_LAB}.glsl; grade with ctest -L lab${PT_LAB}")
 endif()

@@ -31,12 +31,15 @@ function(pt_add_stage DIR)
   if(DEFINED ARG_INTEGRATOR)
     set(integrator "${ARG_INTEGRATOR}")
   endif()
-  set(cpu_integrator "${integrator}")
+  set(cpu_include "#include \"${integrator}\"\n")
   if(DEFINED ARG_LAB AND PT_LAB EQUAL ARG_LAB)
     set(integrator "labs/lab${ARG_LAB}.glsl")
-    set(cpu_integrator "${integrator}")
+    set(cpu_include "#include \"${integrator}\"\n")
+    if(PT_LAB_GRADING)  # the student's integrator out of line, as the other labs' functions
+      pt_lab_out_of_line(${ARG_LAB} cpu_include)
+    endif()
   elseif(DEFINED ARG_LAB AND PT_LAB_CHECK)
-    set(cpu_integrator "labs/check_lab${ARG_LAB}.h")
+    set(cpu_include "#include \"labs/check_lab${ARG_LAB}.h\"\n")
   endif()
 
   file(CONFIGURE OUTPUT ${out}/kernel.comp CONTENT
@@ -81,8 +84,7 @@ ${kernel_defines}#include \"cpu/cpu_variants.h\"
 
 namespace ${ns}::v${i} {
 #include \"cpu/kernel_begin.h\"
-#include \"${cpu_integrator}\"
-#include \"cpu/kernel_end.h\"
+${cpu_include}#include \"cpu/kernel_end.h\"
 }  // namespace ${ns}::v${i}
 ")
     list(APPEND sources ${out}/cpu_kernel_v${i}.cpp)

@@ -6,6 +6,7 @@ weights of stage5_mis, and the project's own tests grade it; this script runs th
 every submission of a class, sealed.
 
 usage: tools/grade_lab.py LAB SUBMISSIONS_DIR [--out DIR] [--timeout SECONDS] [--jobs N] [--work DIR] [--unsealed]
+       [--compiler-cache]
 
 A submission is a file NAME.glsl (the student's labs/labLAB.glsl) or a folder NAME/ that holds
 labLAB.glsl (or labs/labLAB.glsl). For each, in the order of the names:
@@ -13,12 +14,12 @@ labLAB.glsl (or labs/labLAB.glsl). For each, in the order of the names:
      preprocessor line (no C++ hidden from GLSL behind #ifdef __cplusplus), no #include of a
      reference solution; else REFUSED (grading/source_check.py);
   2. it becomes labs/labLAB.glsl of a copy of this repository (WORK/src), and every output of
-     the lab build (WORK/build, -DPT_LAB=LAB) that depends on it is deleted first, so a
+     the lab build (WORK/src/build, -DPT_LAB=LAB) that depends on it is deleted first, so a
      submission that does not compile leaves no test program at all (issue 24);
   3. pt_tests is rebuilt inside bubblewrap (grading/sandbox.py): the system and WORK/src
      read-only, the lab's reference solutions replaced by placeholders, no network, a private
      /tmp, limits on CPU time, memory, processes and file size; a failure is COMPILE ERROR;
-  4. the lab's tests run inside bubblewrap as well, WORK/build read-only too, the held-back
+  4. the lab's tests run inside bubblewrap as well, the build read-only too, the held-back
      tests' sources hidden, WORK/run/NAME the one folder they may write; their Catch2 report
      comes over a pipe the grader holds (no file the tests could rewrite), and stdout and
      stderr over pipes read up to a cap. After --timeout seconds: TIMEOUT, naming the lab
@@ -51,7 +52,9 @@ from grading.sandbox import Sandbox, probe  # noqa: E402
 from grading.stuck import finder, lab_functions  # noqa: E402
 from grading.submission import Grade, find_submissions, grade_one, summary  # noqa: E402
 from grading.depends import put_lab_file  # noqa: E402
-from grading.work_build import held_back_tests, lock_work, placeholders, set_up  # noqa: E402
+from grading.compiler_cache import compiler_cache  # noqa: E402
+from grading.hidden import held_back_tests, placeholders  # noqa: E402
+from grading.work_build import lock_work, set_up, work_paths  # noqa: E402
 from make_lab_handout import HELD_BACK_FILES, REFERENCE_FILES  # noqa: E402
 
 
@@ -73,6 +76,9 @@ def parse_args(argv):
     # For the grader's own test: skip the check that a lab file is GLSL only, so that the
     # sandbox alone is tried against C++ hidden behind #ifdef __cplusplus.
     p.add_argument("--unchecked-source", action="store_true", help=argparse.SUPPRESS)
+    p.add_argument("--compiler-cache", action="store_true",
+                   help="the set-up reads the libraries' objects from your ccache cache, read-only (after "
+                        "./tutorial test's build, about half of a set-up; the work folder inside the checkout)")
     a = p.parse_args(argv)
     if a.lab is None or a.submissions is None:
         die(f"missing the {'lab number and the ' if a.lab is None else ''}submissions folder ({USAGE})", 2)
@@ -124,7 +130,8 @@ def main(argv):
     cmake, ctest = shutil.which("cmake"), shutil.which("ctest")
     if not cmake or not ctest:
         die("cmake and ctest are needed (./tutorial test installs them)", 1)
-    src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
+    src, build = work_paths(a.work)
+    a.cache = compiler_cache(a.compiler_cache)
     os.makedirs(a.work, exist_ok=True)
     box, references = sandbox_for(a, src)
     lock = lock_work(a.work)  # noqa: F841 (held while this process runs)

@@ -41,10 +41,16 @@ part of the article). Two parts:
 and a summary line, grades.csv and grades.xml with one row and one testcase per submission.
 Lab 4 (common/kernel/triangle_light.glsl, emission_rule.glsl): a_correct PASS, b_pdf_doubled and
 c_pdf_mismatch FAIL (the latter through the held-back test), each mutant FAIL.
-Labs 1, 3, 5 and 6 (grade_lab_checks/fixtures_small.py): a_correct PASS, b_syntax_error COMPILE
-ERROR, each mutant FAIL; lab 1, which has no mutants, c_dimmed and c_black_sky FAIL. Each lab's
-set-up builds the student's code into the kernels of stages 1-5 only.
+Labs 3, 5 and 6 (grade_lab_checks/fixtures_small.py): a_correct PASS, b_syntax_error COMPILE
+ERROR, each mutant FAIL. Lab 1, which has no mutants: a_correct, b_syntax_error, c_dimmed and
+c_black_sky FAIL, and lab 2's other kinds (f_endless_loop TIMEOUT, naming Li() where gdb is
+installed; g_crash; h_empty; the four attacks REFUSED, and again with the source check off).
+Each lab's set-up builds the student's code into the kernels of stages 1-5 only.
+  --lab1 WORK (ctest entry grade_lab_1, in ./tutorial test; about a minute after the Release
+    build): lab 1 alone, its set-up reading the Release build's objects from ccache
+    (--compiler-cache). Exit 77 (skipped) where bubblewrap cannot run.
 usage: tools/test_grade_lab.py --fast [PT_TESTS]
+       tools/test_grade_lab.py --lab1 WORK
        tools/test_grade_lab.py [WORK]   (WORK: lab 2's build, WORK_labN lab N's, kept between runs;
        PT_GRADE_TEST_TIMEOUT: seconds for one submission's tests (labs 1-3, 5, 6), default 90;
        PT_GRADE_TEST_LABS: the labs to grade, default "1,2,3,4,5,6")"""
@@ -53,14 +59,17 @@ import sys
 import tempfile
 
 from grade_lab_checks.fast import bad_usage, fast  # the parts of this test: tools/grade_lab_checks/
-from grade_lab_checks.graded import SMALL_LABS, lab2, lab2_sandbox_alone, lab4, small_lab
+from grade_lab_checks.graded import SMALL_LABS, lab1, lab2, lab2_sandbox_alone, lab4, small_lab
+from grading.sandbox import probe
 
 
 def main():
     if len(sys.argv) >= 2 and sys.argv[1] == "--fast":
         return fast(sys.argv[2] if len(sys.argv) > 2 else None)
+    if len(sys.argv) == 3 and sys.argv[1] == "--lab1":
+        return lab1_in_suite(sys.argv[2])
     if len(sys.argv) > 2:
-        print("usage: tools/test_grade_lab.py --fast [PT_TESTS] | [WORK]", file=sys.stderr)
+        print("usage: tools/test_grade_lab.py --fast [PT_TESTS] | --lab1 WORK | [WORK]", file=sys.stderr)
         return 2
     with tempfile.TemporaryDirectory(prefix="grade_lab_test_") as tmp:
         work = sys.argv[1] if len(sys.argv) == 2 else os.path.join(tmp, "work")
@@ -71,11 +80,24 @@ def main():
         if "2" in labs:
             lab2(subs, out, work)
             lab2_sandbox_alone(os.path.join(tmp, "attacks"), os.path.join(tmp, "out_attacks"), work)
+        if "1" in labs:
+            lab1(os.path.join(tmp, "submissions_lab1"), os.path.join(tmp, "out_lab1"), work + "_lab1")
         if "4" in labs:
             lab4(os.path.join(tmp, "submissions_lab4"), os.path.join(tmp, "out_lab4"), work + "_lab4")
         for lab in sorted(SMALL_LABS):
             if str(lab) in labs:
                 small_lab(lab, os.path.join(tmp, f"submissions_lab{lab}"), os.path.join(tmp, f"out_lab{lab}"), f"{work}_lab{lab}")
+    return 0
+
+
+def lab1_in_suite(work):
+    """Lab 1 graded in ./tutorial test: a sealed grading run from set-up to report, end to end."""
+    why = probe()
+    if why:
+        print(f"skipped: no sandbox here ({why})")
+        return 77
+    with tempfile.TemporaryDirectory(prefix="grade_lab_test_") as tmp:
+        lab1(os.path.join(tmp, "submissions_lab1"), os.path.join(tmp, "out_lab1"), work, ["--compiler-cache"])
     return 0
 
 

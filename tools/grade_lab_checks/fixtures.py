@@ -77,8 +77,22 @@ def plants(work):
     """Where r_writes_outside tries to write, and where it copies the reference to."""
     return ([os.path.join(work, "src", "tools", "grading", "planted_by_student.py"),
              os.path.join(REPO, "tools", "grading", "planted_by_student.py"),
-             os.path.join(work, "build", "bin", "planted_by_student"), "/planted_by_student"],
-            os.path.join(work, "build", "copied_reference.glsl"))
+             os.path.join(work, "src", "build", "bin", "planted_by_student"), "/planted_by_student"],
+            os.path.join(work, "src", "build", "copied_reference.glsl"))
+
+
+def attacks(rel, references, wrong, work, out):
+    """The attacks of issue 47 on a lab whose reference file is rel (references: all of the
+    lab's): each would pass, or plant its files, if the grader let it. wrong: a wrong answer
+    (a whole lab file) that the attacks which write carry, so that only the attack could pass it."""
+    targets, copy_to = plants(work)
+    return {
+        "r_includes_reference.glsl": "".join(f'#include "{r}"\n' for r in references),
+        "r_writes_outside.glsl": wrong + plant_attack(targets, os.path.join(work, "src", rel), copy_to),
+        "r_rewrites_report.glsl": wrong + report_attack([os.path.join(out, "logs", "r_rewrites_report.tests.xml"),
+                                                         os.path.join(work, "src", "build", "report.xml")]),
+        "r_prints_1gb.glsl": reference(rel) + PRINT_ATTACK,
+    }
 
 
 def lab2_fixtures(folder, work=None, out=None):
@@ -98,7 +112,6 @@ def lab2_fixtures(folder, work=None, out=None):
         return with_wrappers(rel, weight, f"vec3 uniform_bounce_weight(vec3 f, vec3 wi) {{\n  {body}\n}}\n")
 
     no_pdf = bounce("return reference_weight(f, wi) / (2.0f * kPi);")
-    targets, copy_to = plants(work)
     write(folder, {
         "a_correct.glsl": reference(rel),
         "b_syntax_error.glsl": variant(sampler="return reference_sampler(u)"),
@@ -119,12 +132,7 @@ def lab2_fixtures(folder, work=None, out=None):
                                                     "float r = max(length(vec2(v.x, v.y)), 1e-30f);\n  "
                                                     "return vec3(v.x / r, v.y / r, v.z);"),
         "m_uniform_pdf_one_over_pi.glsl": variant(pdf="return 1.0f / kPi;"),
-        # The attacks: each would pass, or plant its files, if the grader let it.
-        "r_includes_reference.glsl": "".join(f'#include "{r}"\n' for r in REFERENCES_2),
-        "r_writes_outside.glsl": no_pdf + plant_attack(targets, os.path.join(work, "src", rel), copy_to),
-        "r_rewrites_report.glsl": no_pdf + report_attack([os.path.join(out, "logs", "r_rewrites_report.tests.xml"),
-                                                          os.path.join(work, "build", "report.xml")]),
-        "r_prints_1gb.glsl": reference(rel) + PRINT_ATTACK,
+        **attacks(rel, REFERENCES_2, no_pdf, work, out),
     }, also=reference("common/kernel/russian_roulette.glsl"))
     # The bounce weight: the printed factor (erratum 1), the cosine or the pdf left out.
     write(folder, {

@@ -3,24 +3,36 @@
 file, one that does not compile, and each known-wrong answer of labs/mutants.h, written as a
 student would, from the reference file with its functions renamed and called by wrappers, so
 that no line of their bodies is quoted here (the handout ships this file)."""
+from grade_lab_checks.fixtures import attacks
 from grade_lab_checks.support import reference, with_wrappers, write
 
 
-def lab1_fixtures(folder):
+def lab1_fixtures(folder, work=None, out=None):
     """Lab 1 (stage1's Li, Eq. 2) has no mutants in labs/mutants.h: its wrong answers here are a
-    dimmed image and a black sky."""
+    dimmed image and a black sky. With the lab's run in ./tutorial test (tests/CMakeLists.txt,
+    grade_lab_1) come the submissions of the other kinds lab 2 has: an endless loop, a crash, a
+    folder without the file, and the attacks, aimed at work and out (the grading run's folders)."""
+    work, out = work or "/nonexistent", out or "/nonexistent"
     rel = "stage1_raycast/integrator.glsl"
 
     def variant(body):
         return with_wrappers(rel, {"vec3 Li(Ray ray)": "reference_Li"}, f"vec3 Li(Ray ray) {{\n  {body}\n}}\n")
 
+    dimmed = variant("return 0.5f * reference_Li(ray);")
     write(folder, {
         "a_correct.glsl": reference(rel),
         "b_syntax_error.glsl": variant("return reference_Li(ray)"),
-        "c_dimmed.glsl": variant("return 0.5f * reference_Li(ray);"),
+        "c_dimmed.glsl": dimmed,
         # What --sky (or the environment) gives a ray that meets nothing, left black.
         "c_black_sky.glsl": variant("if (intersect_scene(ray, kInfinity).kind == kPrimNone) return vec3(0.0f);\n"
                                     "  return reference_Li(ray);"),
+        # A count down on an unsigned i that never ends (g++ warns: always true).
+        "f_endless_loop.glsl": variant("float acc = 0.0f;\n  for (uint i = 4u; i >= 0u; --i) {\n"
+                                       "    acc += ray.dir.x;\n  }\n  return reference_Li(ray) + vec3(0.0f * acc);"),
+        # A read far past the end of the scene's materials: SIGSEGV on the CPU.
+        "g_crash.glsl": variant("return reference_Li(ray) + vec3(0.0f * materials[100000000 + int(ray.dir.x)].metallic);"),
+        "h_empty/README.txt": "lab1.glsl was forgotten\n",
+        **attacks(rel, [rel], dimmed, work, out),
     })
 
 

@@ -13,7 +13,7 @@ import xml.etree.ElementTree as ET
 
 from grade_lab_checks.fixtures import lab2_fixtures, lab4_fixtures, plants
 from grade_lab_checks.fixtures_small import lab1_fixtures, lab3_fixtures, lab5_fixtures, lab6_fixtures
-from grade_lab_checks.support import REPO, TIMEOUT, TOOL, expect, written_mutants
+from grade_lab_checks.support import REPO, TIMEOUT, TOOL, expect, written_mutants, work_paths
 
 
 def grade(lab, subs, out, work, timeout, extra=()):
@@ -111,7 +111,7 @@ def graded_kernels(work, lab, stages, ungraded, includer="stage2_montecarlo"):
     setup = json.load(open(os.path.join(work, "setup.json"), encoding="utf-8"))
     expect(setup.get("stages") == stages, f"lab {lab}'s set-up names the stages its tests run: {stages}",
            setup.get("stages"))
-    build = os.path.join(work, "build")
+    build = work_paths(work)[1]
     for folder in ungraded:
         kernel = open(os.path.join(build, folder, "cpu_kernel_v0.cpp"), encoding="utf-8").read()
         expect('#define PT_LAB_UNGRADED_KERNEL "' + folder.split("_")[0] + '"' in kernel,
@@ -124,17 +124,21 @@ def graded_kernels(work, lab, stages, ungraded, includer="stage2_montecarlo"):
 
 
 def lab2_sandbox_alone(subs, out, work):
-    """The attacks again with the source check off (--unchecked-source): the sandbox alone
-    must keep them from passing, planting files or flooding the grader."""
+    sandbox_alone(2, lab2_fixtures, "common/kernel/uniform_hemisphere.glsl", subs, out, work, TIMEOUT)
+
+
+def sandbox_alone(lab, fixtures, reference_file, subs, out, work, timeout):
+    """The attacks on lab `lab` again with the source check off (--unchecked-source): the
+    sandbox alone must keep them from passing, planting files or flooding the grader."""
     os.makedirs(subs)
-    lab2_fixtures(subs, work, out)
+    fixtures(subs, work, out)
     for f in os.listdir(subs):
         if not f.startswith("r_"):
             path = os.path.join(subs, f)
             shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
-    lines, summary = grade(2, subs, out, work, TIMEOUT, ["--unchecked-source"])
+    lines, summary = grade(lab, subs, out, work, timeout, ["--unchecked-source"])
     check_lines(lines, {
-        "r_includes_reference": r"COMPILE ERROR .*common/kernel/uniform_hemisphere\.glsl.*reference solution.*",
+        "r_includes_reference": rf"COMPILE ERROR .*{re.escape(reference_file)}.*reference solution.*",
         # No code runs during the build of pt_lab_tests, and the tests see the build read-only:
         # every write fails, and its estimator (no pdf) is graded.
         "r_writes_outside": FAIL,
@@ -151,7 +155,6 @@ def lab2_sandbox_alone(subs, out, work):
 STAGE_FOLDERS = ["stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect", "stage5_mis",
                  "stage6_variance_aware"]
 SMALL_LABS = {
-    1: (lab1_fixtures, ["c_dimmed", "c_black_sky"], "stage1_raycast", range(1, 6)),
     3: (lab3_fixtures, [], "stage2_montecarlo", range(1, 6)),
     5: (lab5_fixtures, [], "stage2_montecarlo", range(1, 5)),
     6: (lab6_fixtures, [], "stage5_mis", range(1, 6)),
@@ -159,7 +162,7 @@ SMALL_LABS = {
 
 
 def small_lab(lab, subs, out, work):
-    """Lab 1, 3, 5 or 6: the correct file passes, the one that does not compile says where, each
+    """Lab 3, 5 or 6: the correct file passes, the one that does not compile says where, each
     wrong answer fails with a suspect; the student's code only in the kernels of the stages the
     lab's tests run."""
     fixtures, wrong, includer, stages = SMALL_LABS[lab]
@@ -172,6 +175,44 @@ def small_lab(lab, subs, out, work):
     check_lines(lines, expected)
     check_summary(summary, expected)
     graded_kernels(work, lab, [f"stage{k}" for k in stages], STAGE_FOLDERS[max(stages):], includer)
+
+
+# Lab 1's tests take about 1.5 s per submission on 2 quiet cores; its endless loop waits this long.
+LAB1_TIMEOUT = "20"
+
+
+def lab1(subs, out, work, extra=()):
+    """Lab 1 with a submission of every kind (its run in ./tutorial test, ctest entry
+    grade_lab_1; extra: the grader's options, --compiler-cache there): the correct file
+    passes, the one that does not compile (right after it) says where, each wrong answer fails
+    with a suspect, the endless loop times out (naming Li() where gdb is installed), the crash
+    and the empty folder say so, the attacks are REFUSED by the source check and, with it off,
+    by the sandbox; nothing is planted or written into the repository."""
+    os.makedirs(subs)
+    lab1_fixtures(subs, work, out)
+    lines, summary = grade(1, subs, out, work, LAB1_TIMEOUT, extra)
+    preprocessor = r"REFUSED labs/lab1\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*"
+    expected = {
+        "a_correct": r"PASS",
+        "b_syntax_error": r"COMPILE ERROR labs/lab1\.glsl:\d+(:\d+)?: error: .*",
+        "c_dimmed": FAIL,
+        "c_black_sky": FAIL,
+        "f_endless_loop": (r"TIMEOUT " + (r"in Li\(\) " if shutil.which("gdb") else "") + r"after \S+ s.* "
+                           r"\(warning: labs/lab1\.glsl:\d+(:\d+)?: warning: comparison .* always true.*\)"),
+        "g_crash": r"CRASH SIGSEGV in \".*\"",
+        "h_empty": r"COMPILE ERROR no lab1\.glsl in the submission",
+        "r_includes_reference": r"REFUSED labs/lab1\.glsl:1: includes the reference solution stage1_raycast/integrator\.glsl",
+        "r_writes_outside": preprocessor,
+        "r_rewrites_report": preprocessor,
+        "r_prints_1gb": preprocessor,
+    }
+    check_lines(lines, expected)
+    check_summary(summary, expected)
+    graded_kernels(work, 1, [f"stage{k}" for k in range(1, 6)], STAGE_FOLDERS[5:], "stage1_raycast")
+    nothing_planted(work)
+    no_pictures_in_repository()
+    sandbox_alone(1, lab1_fixtures, "stage1_raycast/integrator.glsl", subs + "_attacks", out + "_attacks", work,
+                  LAB1_TIMEOUT)
 
 
 def lab4(subs, out, work):

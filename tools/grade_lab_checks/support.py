@@ -5,6 +5,8 @@ import os
 import re
 import sys
 
+from grading.work_build import work_paths  # noqa: F401 (the work copy and lab build of a work folder)
+
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # tools/
 REPO = os.path.dirname(HERE)
 TOOL = os.path.join(HERE, "grade_lab.py")

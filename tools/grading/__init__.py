@@ -20,7 +20,7 @@ import sys
 TEST_TARGET = "pt_tests"
 BUILD_TIMEOUT = 3600  # seconds: the first build of a lab takes a few minutes on 2 cores
 USAGE = ("usage: tools/grade_lab.py LAB SUBMISSIONS_DIR [--out DIR] [--timeout SECONDS] [--jobs N] [--work DIR] "
-         "[--unsealed]")
+         "[--unsealed] [--compiler-cache]")
 
 
 def die(message, status):

@@ -9,7 +9,7 @@ import re
 
 from .sandbox import BUILD_LIMITS
 
-# The stage whose GPU kernel (WORK/build/STAGE/kernel.comp) holds lab N's functions.
+# The stage whose GPU kernel (WORK/src/build/STAGE/kernel.comp) holds lab N's functions.
 LAB_STAGE = {1: "stage1_raycast", 2: "stage2_montecarlo", 3: "stage3_importance", 4: "stage4_direct_indirect",
              5: "stage4_direct_indirect", 6: "stage5_mis"}
 GLSL_TIMEOUT = 300  # seconds

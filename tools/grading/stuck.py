@@ -3,8 +3,8 @@
 the sandbox is killed, gdb (if installed) prints the stacks of its processes, and the first
 frame that names a function of the lab's file (labs/labN.glsl, the stub's definitions) says
 where the endless loop is. The grader's build keeps the lab's functions out of line on the CPU
-(PT_LAB_GRADING, cmake/Labs.cmake), so that they have frames of their own; lab 1's integrator,
-compiled as the stage's, may still be inlined: then nothing is said."""
+(PT_LAB_GRADING, cmake/Labs.cmake; lab 1's integrator too, cmake/PtStage.cmake), so that they
+have frames of their own. Where none is found (gdb missing), nothing is said."""
 import os
 import re
 import shutil

@@ -15,6 +15,7 @@ from concurrent.futures import ThreadPoolExecutor
 from . import BUILD_TIMEOUT, die
 from .hints import sentence, suspect_for
 from .lab_tests import CONVENTION, read_report, short, signal_name
+from .compiler_cache import SUBMISSION_ENV
 from .sandbox import BUILD_LIMITS, FOLDER_CAP, MiB, TEST_LIMITS
 from .reports import folder_size, keep_pictures
 from .shards import merge_reports, merge_results, plan, read_durations, record_durations, shard_specs
@@ -128,7 +129,7 @@ def build_submission(g, ctx, outputs):
     box, build = ctx["sandbox"], ctx["build"]
     before = snapshot(build)
     r = box.run(build_target(ctx["cmake"], build, ctx["args"].jobs, ctx["target"]), build, [build], [ctx["src"]],
-                box.hidden_in_build, BUILD_LIMITS, BUILD_TIMEOUT)
+                box.hidden_in_build, BUILD_LIMITS, BUILD_TIMEOUT, env=SUBMISSION_ENV)
     g.build_s, g.build_cpu = r.seconds, r.cpu_seconds
     build_log = os.path.join(ctx["logs"], f"{g.name}.build.log")
     write_log(build_log, r.stdout, r.stderr)

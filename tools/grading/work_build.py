@@ -1,7 +1,8 @@
 """The work copy of the repository and its lab build, for tools/grade_lab.py (grading a class's
 lab submissions; tooling for teachers, not a part of the article). WORK/src is a copy of the
-repository, rewritten only where a file differs, and WORK/build its build with -DPT_LAB=LAB
--DPT_LAB_GRADING=ON, kept between runs. Before a submission is built, every output of that
+repository, rewritten only where a file differs, and WORK/src/build its build with -DPT_LAB=LAB
+-DPT_LAB_GRADING=ON, kept between runs (a child of the copy, as a checkout's build folder is of
+the checkout, so that a compiler cache finds the same relative paths: compiler_cache.py). Before a submission is built, every output of that
 build made from labs/labLAB.glsl is deleted (depends.py), so a submission that does not compile
 leaves no test program at all, never the previous student's (issue 24). The first build, with
 the repository's own labs/labLAB.glsl, is configured again with only the test files that hold
@@ -20,7 +21,13 @@ from . import BUILD_TIMEOUT, TEST_TARGET, USAGE, die
 from .shards import tests_by_file
 from .lab_tests import lab_specs, tag_specs, test_files, test_names, test_stages, test_tags
 from .depends import delete_dependents
+from .hidden import placeholders
 from .sandbox import BUILD_LIMITS, NOBODY
+
+
+def work_paths(work):
+    """(the work copy, its lab build) of WORK."""
+    return os.path.join(work, "src"), os.path.join(work, "src", "build")
 
 
 def lock_work(work):
@@ -54,6 +61,8 @@ def sync_tree(src, dest, skip):
                 shutil.copymode(s, d)
                 changed += 1
     for root, dirs, files in os.walk(dest):
+        if root == dest:  # the lab build (work_paths) and any other build folder of the copy
+            dirs[:] = [d for d in dirs if not d.startswith("build")]
         for f in files:
             if os.path.normpath(os.path.join(root, f)) not in keep:
                 os.remove(os.path.join(root, f))
@@ -132,11 +141,11 @@ def build_target(cmake, build, jobs, target):
     return [cmake, "--build", build, "--target", target, "-j", str(jobs)]
 
 
-def sealed_build(box, cmake, build, src, jobs, target, log_path):
-    """Builds target in the sandbox (build writable, src read-only, the references hidden);
-    the log in log_path. Returns (return code, timed out)."""
-    r = box.run(build_target(cmake, build, jobs, target), build, [build], [src], box.hidden_in_build,
-                BUILD_LIMITS, BUILD_TIMEOUT)
+def sealed_build(box, cmake, build, src, jobs, target, log_path, cache):
+    """Builds target in the sandbox (build writable, src read-only, the references hidden; the
+    compiler cache read-only when it is used); the log in log_path. Returns (return code, timed out)."""
+    r = box.run(build_target(cmake, build, jobs, target), build, [build], [src] + cache.readonly(), box.hidden_in_build,
+                BUILD_LIMITS, BUILD_TIMEOUT, env=cache.setup_env(build))
     with open(log_path, "ab") as fh:
         fh.write(r.stdout + r.stderr)
     return r.rc, r.timed_out
@@ -187,11 +196,12 @@ def configure(a, box, cmake, src, build, setup_log, files, stages):
     """Configures the lab build in the sandbox: the grader's (PT_LAB_GRADING), one general CPU
     kernel per stage, pt_lab_tests made of files (test files without .cpp; [] for all), the
     student's code in the CPU kernels of stages only (["stage2"]; None for every stage: the
-    others get the traps of labs/ungraded.h, cmake/Labs.cmake)."""
+    others get the traps of labs/ungraded.h, cmake/Labs.cmake), ccache as the launcher when
+    the set-up uses the cache (a.cache)."""
     graded = "" if stages is None else (";".join(stages) or "none")
     r = box.run([cmake, "-S", src, "-B", build, "-G", "Unix Makefiles", "-DCMAKE_BUILD_TYPE=Release",
                  f"-DPT_LAB={a.lab}", "-DPT_LAB_GRADING=ON", "-DPT_CPU_GENERAL_ONLY=ON",
-                 "-DPT_LAB_TEST_FILES=" + ";".join(files), "-DPT_LAB_GRADED_STAGES=" + graded],
+                 "-DPT_LAB_TEST_FILES=" + ";".join(files), "-DPT_LAB_GRADED_STAGES=" + graded] + a.cache.configure_args(),
                 build, [build], [src], box.hidden_in_build, BUILD_LIMITS, BUILD_TIMEOUT)
     with open(setup_log, "ab") as fh:
         fh.write(r.stdout + r.stderr)
@@ -207,14 +217,14 @@ def first_build(a, box, cmake, ctest, lab_file, setup_log, stamp):
     the student's code only in the kernels of the stages they run, so that a submission's
     build compiles no other. Returns the setup {lab, target, specs, tests, by_file, stages},
     written to stamp."""
-    src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
+    src, build = work_paths(a.work)
     os.makedirs(build, exist_ok=True)
     box.owner_of_writable(build)
     target, tags, files = configure(a, box, cmake, src, build, setup_log, [], None)
     delete_dependents(build, lab_file)
     specs, tests, stages = None, None, None
     while True:
-        rc, timed_out = sealed_build(box, cmake, build, src, a.jobs, target, setup_log)
+        rc, timed_out = sealed_build(box, cmake, build, src, a.jobs, target, setup_log, a.cache)
         if rc != 0 or timed_out:
             die(f"the lab build fails with the repository's own labs/lab{a.lab}.glsl, before any submission: "
                 f"{first_error(setup_log, src)} (see {setup_log})", 1)
@@ -250,7 +260,7 @@ def set_up(repo, a, box, out, logs, cmake, ctest, count, hidden):
     hidden from every build (hidden: repository-relative) and, the first time and whenever the
     repository changed since, builds the lab once (first_build). Returns (the work copy's
     labs/labLAB.glsl, its content, its time stamp, the setup {lab, specs, tests})."""
-    src, build = os.path.join(a.work, "src"), os.path.join(a.work, "build")
+    src, build = work_paths(a.work)
     changed = sync_tree(repo, src, {a.work, out})
     box.hidden_in_build = placeholders(a.work, src, hidden, "a reference solution")
     lab_file = os.path.join(src, "labs", f"lab{a.lab}.glsl")
@@ -260,41 +270,16 @@ def set_up(repo, a, box, out, logs, cmake, ctest, count, hidden):
     stamp = os.path.join(a.work, "setup.json")
     setup = kept_setup(stamp, a.lab, fresh, changed)
     print(f"grade_lab: lab {a.lab}, {count} submission(s); the lab build is {build}"
-          + (" (new: the first build takes about 5 min on 2 idle cores)" if fresh else "")
+          + (" (new: its first build takes about 2 min on 2 idle cores)" if fresh else "")
           + (", unchanged since the last run" if setup else ""), file=sys.stderr, flush=True)
+    if setup is None and (a.cache.enabled or a.cache.why_not):
+        print("grade_lab: " + (a.cache.why_not or f"the set-up reads compiled objects from ccache's cache "
+                               f"{a.cache.settings['cache_dir']}, read-only"), file=sys.stderr, flush=True)
+    if os.path.isfile(os.path.join(a.work, "build", "CMakeCache.txt")):
+        print(f"grade_lab: {os.path.join(a.work, 'build')} is an older grader's lab build, no longer used "
+              f"(the build is {build} now): delete it to free its space", file=sys.stderr, flush=True)
     if not fresh and box.as_nobody and os.stat(build).st_uid != NOBODY:
         box.owner_of_writable(build)  # a build made unsealed (or by an older grader): the sandbox's now
     if setup is None:
         setup = first_build(a, box, cmake, ctest, lab_file, os.path.join(logs, "_setup.log"), stamp)
     return lab_file, original, lab_stamp, setup
-
-
-def placeholders(work, src, paths, why):
-    """{path in src: a placeholder file in WORK/hidden} for each of paths (repository-relative)
-    that exists: a file that says why it is not there, with the original's times, so that make
-    sees nothing changed and a submission that includes it does not compile."""
-    folder = os.path.join(work, "hidden")
-    os.makedirs(folder, exist_ok=True)
-    hidden = {}
-    for rel in paths:
-        original = os.path.join(src, rel)
-        if not os.path.isfile(original):
-            continue
-        placeholder = os.path.join(folder, rel.replace(os.sep, "__"))
-        with open(placeholder, "w", encoding="utf-8") as fh:
-            fh.write(f"#error \"{rel} is {why}: a submission does not see it (tools/grade_lab.py)\"\n")
-        st = os.stat(original)
-        os.utime(placeholder, ns=(st.st_atime_ns, st.st_mtime_ns))
-        hidden[original] = placeholder
-    return hidden
-
-
-def held_back_tests(src):
-    """The test sources (repository-relative) that hold a held-back test ([held_back])."""
-    found = []
-    for root, _, files in os.walk(os.path.join(src, "tests")):
-        for f in files:
-            path = os.path.join(root, f)
-            if f.endswith((".cpp", ".h")) and "[held_back]" in open(path, encoding="utf-8", errors="replace").read():
-                found.append(os.path.relpath(path, src))
-    return sorted(found)
