@@ -3,8 +3,9 @@
   sandbox.py      the sealed run (bubblewrap) of every command that compiles or runs a
                   student's code, its limits, and the pipes its output comes back over;
   source_check.py what a lab file may hold (GLSL, the kernel's #includes, include guards);
-  work_build.py   the work copy of the repository, its lab build and the setup's first build,
-                  and the placeholders of the files a submission must not see;
+  work_build.py   the work copy of the repository, its lab build and the setup's first build;
+  hidden.py       the placeholders of the files a submission must not see;
+  compiler_cache.py  the set-up's read-only use of ccache's cache (--compiler-cache);
   depends.py      the deletion of every output that #includes labs/labLAB.glsl before a
                   submission is built (the GPU kernels stay the setup's);
   glsl_check.py   the student's file compiled once as GLSL (glslangValidator);
