@@ -42,7 +42,7 @@ struct WideBvh {
   std::vector<WideNode> nodes;  // root at 0; empty when there are no triangles
   std::vector<WideBlock> blocks;
   const BvhNode* source = nullptr;  // the binary tree's nodes it was built from
-  float root_lo[3] = {}, root_hi[3] = {};  // the root's box: the walk's margin for its children
+  float root_lo[3] = {}, root_hi[3] = {};  // the root's box: the walk's margin for every box
 };
 
 // Collapses the binary tree: a subtree of at most leaf_max (1 ... 8) triangles becomes one

@@ -1,8 +1,8 @@
 // The walk of the CPU's wide BVH (wide_bvh.h; the step after the article's GPU section,
 // which ends "yet without an acceleration structure"): a node's 8 boxes by one slab test on
 // SIMD lanes, box_span() of common/kernel/box_slab.glsl on each lane with the margin of the
-// node's own box, no smaller than each child's (the same rounding up, so never a miss where
-// the binary walk would not miss), the hit
+// root's box, no smaller than any box's own (the same rounding up, so never a miss where the
+// binary walk would not miss), the hit
 // children near to far on a stack (skipped when popped beyond the best hit), and a leaf's
 // triangles by hit_triangle_lanes() (triangle_lane_ops.h) with the brute force's tie rule.
 // AVX-512, AVX2 (8 lanes) or 4 lanes, chosen at run time as triangle_lanes.h chooses: this
@@ -54,20 +54,20 @@ template <int bytes>
   const Walk<bytes> walk(ray);
   Hit best(in.t, in.b1, in.b2, uint(in.prim), in.prim >= 0 ? kPrimTriangle : kPrimNone);
   std::int32_t stack_ref[kWideStack];
-  float stack_t[kWideStack], stack_pad[kWideStack];
+  float stack_t[kWideStack];
   int top = 0;
   std::int32_t ref = 0;
-  float pad = root_pad(bvh, ray);  // the margin of ref's box
+  const auto pad = lanes_splat<typename Walk<bytes>::F>(root_pad(bvh, ray));  // every box's margin
   while (true) {
     if (ref >= 0) {
       const pt::WideNode& n = bvh.nodes[std::size_t(ref)];
-      float enter[pt::kWideWidth], pads[pt::kWideWidth];
-      unsigned bits = walk.children(n, best.t, pad, enter, pads);
+      float enter[pt::kWideWidth];
+      unsigned bits = walk.children(n, best.t, pad, enter);
       if (bits != 0u) {
         int i = __builtin_ctz(bits);
         bits &= bits - 1u;
         if (bits == 0u) {
-          ref = n.child[i], pad = pads[i];
+          ref = n.child[i];
           continue;
         }
         // Two or more: all on the stack, nearest last (insertion by entry distance), and
@@ -75,12 +75,11 @@ template <int bytes>
         const int base = top;
         for (;; i = __builtin_ctz(bits), bits &= bits - 1u) {
           int j = top++;
-          for (; j > base && stack_t[j - 1] < enter[i]; j--)
-            stack_ref[j] = stack_ref[j - 1], stack_t[j] = stack_t[j - 1], stack_pad[j] = stack_pad[j - 1];
-          stack_ref[j] = n.child[i], stack_t[j] = enter[i], stack_pad[j] = pads[i];
+          for (; j > base && stack_t[j - 1] < enter[i]; j--) stack_ref[j] = stack_ref[j - 1], stack_t[j] = stack_t[j - 1];
+          stack_ref[j] = n.child[i], stack_t[j] = enter[i];
           if (bits == 0u) break;
         }
-        --top, ref = stack_ref[top], pad = stack_pad[top];
+        ref = stack_ref[--top];
         continue;
       }
     } else {
@@ -89,7 +88,7 @@ template <int bytes>
     // Nothing below: the next pending child that a hit could still lie in.
     while (top > 0 && !(stack_t[top - 1] <= best.t)) top--;
     if (top == 0) break;
-    --top, ref = stack_ref[top], pad = stack_pad[top];
+    ref = stack_ref[--top];
   }
   if (best.kind != kPrimTriangle) return in;
   return pt::WideHit{best.t, best.b1, best.b2, std::int32_t(best.prim)};
@@ -100,19 +99,16 @@ template <int bytes>
   const Walk<bytes> walk(ray);
   const Hit none(t_max, 0.0f, 0.0f, 0u, kPrimNone);
   std::int32_t stack_ref[kWideStack];
-  float stack_pad[kWideStack];
   int top = 0;
-  stack_ref[top] = 0, stack_pad[top++] = root_pad(bvh, ray);
+  stack_ref[top++] = 0;
+  const auto pad = lanes_splat<typename Walk<bytes>::F>(root_pad(bvh, ray));  // every box's margin
   while (top > 0) {
-    --top;
-    const std::int32_t ref = stack_ref[top];
+    const std::int32_t ref = stack_ref[--top];
     if (ref >= 0) {
       const pt::WideNode& n = bvh.nodes[std::size_t(ref)];
-      float enter[pt::kWideWidth], pads[pt::kWideWidth];
-      for (unsigned bits = walk.children(n, t_max, stack_pad[top], enter, pads); bits != 0u; bits &= bits - 1u) {
-        const int i = __builtin_ctz(bits);
-        stack_ref[top] = n.child[i], stack_pad[top++] = pads[i];
-      }
+      float enter[pt::kWideWidth];
+      for (unsigned bits = walk.children(n, t_max, pad, enter); bits != 0u; bits &= bits - 1u)
+        stack_ref[top++] = n.child[__builtin_ctz(bits)];
     } else if (walk.template leaf<false>(bvh.blocks[std::size_t(~ref)], none).kind != kPrimNone) {
       return true;
     }

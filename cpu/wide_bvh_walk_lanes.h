@@ -54,16 +54,12 @@ template <int bytes> struct Walk {
   }
 
   // box_span() on the children [at, at + L::count) of n, each grown by `pad`, the margin of
-  // n's own box: the mask of those hit within [0, t_max] (used slots only), their entry
-  // distances, and each child's own margin (child_pad), for its children. n's margin is at
-  // least each child's (a child's box lies in n's, so its corners are no farther from the
-  // origin, and rounding is monotone): the test stays as conservative as box_span(). And it
-  // is known before n is read, so the slab test no longer waits on the margin's 5 steps on
-  // the way from one node to the next; the children's margins are computed beside it.
-  [[gnu::always_inline]] I boxes(const pt::WideNode& n, int at, float t_max, [[maybe_unused]] F pad, F& enter,
-                                 F& child_pad) const {
+  // the root's box: the mask of those hit within [0, t_max] (used slots only) and their entry
+  // distances. The root's margin is at least each box's own (a box lies in the root's, so its
+  // corners are no farther from the origin, and rounding is monotone): the test stays as
+  // conservative as box_span(), and the margin is known once per ray, not computed per box.
+  [[gnu::always_inline]] I boxes(const pt::WideNode& n, int at, float t_max, [[maybe_unused]] F pad, F& enter) const {
     F t_enter = F{}, t_exit = lanes_splat<F>(t_max);
-    child_pad = F{};
     // The slab test on lanes is box_span()'s, lab 5's answer: its handout leaves it out
     // (tools/make_lab_handout.py), and there every used child within [0, t_max] is hit,
     // which finds the same hits, only slower.
@@ -77,9 +73,6 @@ template <int bytes> struct Walk {
       a_near[k] = L::load((back[k] ? n.hi[k] : n.lo[k]) + at) - o[k];
       a_far[k] = L::load((back[k] ? n.lo[k] : n.hi[k]) + at) - o[k];
     }
-    child_pad = kBoxPad * (lanes_max(lanes_abs(a_near[0]), lanes_abs(a_far[0])) +
-                           lanes_max(lanes_abs(a_near[1]), lanes_abs(a_far[1])) +
-                           lanes_max(lanes_abs(a_near[2]), lanes_abs(a_far[2])));
     I pad_bits;
     __builtin_memcpy(&pad_bits, &pad, sizeof pad_bits);
 #pragma GCC unroll 3
@@ -99,17 +92,14 @@ template <int bytes> struct Walk {
     return (t_enter <= t_exit) & (child != pt::kWideEmpty);
   }
 
-  // The mask of the 8 children hit (grown by pad, n's margin), one bit each, their entry
-  // distances and their margins.
-  [[gnu::always_inline]] unsigned children(const pt::WideNode& n, float t_max, float pad, float* enter,
-                                           float* pads) const {
+  // The mask of the 8 children hit (grown by pad, the root's margin), one bit each, and
+  // their entry distances.
+  [[gnu::always_inline]] unsigned children(const pt::WideNode& n, float t_max, F grow, float* enter) const {
     unsigned bits = 0u;
-    const F grow = lanes_splat<F>(pad);
     for (int p = 0; p < parts; p++) {
-      F e, c;
-      const I hit = boxes(n, p * L::count, t_max, grow, e, c);
+      F e;
+      const I hit = boxes(n, p * L::count, t_max, grow, e);
       __builtin_memcpy(enter + p * L::count, &e, sizeof e);
-      __builtin_memcpy(pads + p * L::count, &c, sizeof c);
       bits |= lane_bits(hit) << (p * L::count);
     }
     return bits;
@@ -155,7 +145,7 @@ template <int bytes> struct Walk {
   }
 };
 
-// The margin of the root's box, box_span()'s for that box: the root's children are grown by it.
+// The margin of the root's box, box_span()'s for that box: every box is grown by it.
 [[gnu::always_inline]] inline float root_pad(const pt::WideBvh& bvh, const pt::WideRay& ray) {
   float m[3];
   for (int k = 0; k < 3; k++) {
