@@ -152,7 +152,7 @@ def sealed_build(box, cmake, build, src, jobs, target, log_path, cache):
 
 
 def build_is_new(build, a):
-    """True when WORK/build is not configured yet; exits when it is the build of another lab."""
+    """True when the lab build is not configured yet; exits when it is the build of another lab."""
     cache = os.path.join(build, "CMakeCache.txt")
     if not os.path.isfile(cache):
         return True
