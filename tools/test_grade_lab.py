@@ -40,12 +40,13 @@ part of the article). Two parts:
                                                                      the pipe's cap)
 and a summary line, grades.csv and grades.xml with one row and one testcase per submission.
 Lab 4 (common/kernel/triangle_light.glsl, emission_rule.glsl): a_correct PASS, b_pdf_doubled and
-c_pdf_mismatch FAIL (the latter through the held-back test), each mutant FAIL.
-Labs 3, 5 and 6 (grade_lab_checks/fixtures_small.py): a_correct PASS, b_syntax_error COMPILE
-ERROR, each mutant FAIL. Lab 1, which has no mutants: a_correct, b_syntax_error, c_dimmed and
-c_black_sky FAIL, and lab 2's other kinds (f_endless_loop TIMEOUT, naming Li() where gdb is
-installed; g_crash; h_empty; the four attacks REFUSED, and again with the source check off).
-Each lab's set-up builds the student's code into the kernels of stages 1-5 only.
+c_pdf_mismatch FAIL (the latter through the held-back test), each mutant FAIL. Labs 3, 5 and 6
+(grade_lab_checks/fixtures_small.py): a_correct PASS, b_syntax_error COMPILE ERROR, each mutant
+FAIL. Lab 1, which has no mutants: a_correct, b_syntax_error, c_dimmed and c_black_sky FAIL.
+Labs 1 and 3-6 also get lab 2's other kinds (fixtures.other_kinds): f_endless_loop TIMEOUT
+(naming the lab's function where gdb is installed), g_crash CRASH, h_empty COMPILE ERROR, the
+four attacks REFUSED, and graded again with the source check off. Each lab's set-up builds the
+student's code into the kernels of the stages its tests run only.
   --lab1 WORK (ctest entry grade_lab_1, in ./tutorial test; about a minute after the Release
     build): lab 1 alone, its set-up reading the Release build's objects from ccache
     (--compiler-cache). Exit 77 (skipped) where bubblewrap cannot run.

@@ -10,7 +10,8 @@ import subprocess
 import sys
 import tempfile
 
-from grade_lab_checks.fixtures import lab2_fixtures
+from grade_lab_checks.fixtures import lab2_fixtures, lab4_fixtures
+from grade_lab_checks.fixtures_small import lab1_fixtures, lab3_fixtures, lab5_fixtures, lab6_fixtures
 from grade_lab_checks.support import HERE, REPO, TOOL, expect, reference, write
 
 
@@ -40,22 +41,30 @@ def no_sandbox_refused(tmp):
            "without bubblewrap: one line that says so and names --unsealed, exit 1, nothing graded", r.stderr)
 
 
+LAB_FIXTURES = {1: lab1_fixtures, 2: lab2_fixtures, 3: lab3_fixtures, 4: lab4_fixtures, 5: lab5_fixtures, 6: lab6_fixtures}
+
+
 def source_checks(tmp):
     """The honest fixtures pass the source check; each attack is refused, with its reason."""
     from grading.source_check import check_source
     from make_lab_handout import REFERENCE_FILES
     refs = sorted({r for rels in REFERENCE_FILES.values() for r in rels})
-    subs = os.path.join(tmp, "fixtures")
-    os.makedirs(subs)
-    lab2_fixtures(subs)
-    found = {}
-    for entry in sorted(os.listdir(subs)):
-        path = os.path.join(subs, entry, "lab2.glsl") if os.path.isdir(os.path.join(subs, entry)) else os.path.join(subs, entry)
-        if os.path.isfile(path):
-            found[entry.replace(".glsl", "")] = check_source(open(path, "rb").read(), "labs/lab2.glsl", refs, REPO)
-    refused = {n: why for n, why in found.items() if why}
-    expect(sorted(refused) == ["r_includes_reference", "r_prints_1gb", "r_rewrites_report", "r_writes_outside"],
-           "the source check refuses the four attacks and nothing else", repr(refused))
+    refused_by_lab = {}
+    for lab, fixtures in LAB_FIXTURES.items():
+        subs = os.path.join(tmp, f"fixtures_lab{lab}")
+        os.makedirs(subs)
+        fixtures(subs)
+        found = {}
+        for entry in sorted(os.listdir(subs)):
+            folder = os.path.join(subs, entry)
+            path = os.path.join(folder, f"lab{lab}.glsl") if os.path.isdir(folder) else folder
+            if os.path.isfile(path):
+                found[entry.replace(".glsl", "")] = check_source(open(path, "rb").read(), f"labs/lab{lab}.glsl", refs, REPO)
+        refused = {n: why for n, why in found.items() if why}
+        expect(sorted(refused) == ["r_includes_reference", "r_prints_1gb", "r_rewrites_report", "r_writes_outside"],
+               f"the source check refuses lab {lab}'s four attacks and nothing else", repr(refused))
+        refused_by_lab[lab] = refused
+    refused = refused_by_lab[2]
     expect(refused["r_includes_reference"] == "labs/lab2.glsl:1: includes the reference solution "
                                               "common/kernel/uniform_hemisphere.glsl", "it names the reference included")
     expect(all("'#ifdef __cplusplus'" in refused[n] for n in ("r_prints_1gb", "r_rewrites_report", "r_writes_outside")),

@@ -95,6 +95,23 @@ def attacks(rel, references, wrong, work, out):
     }
 
 
+# A count down on an unsigned i that never ends (g++ warns: always true), and a read far past
+# the end of the scene's materials (SIGSEGV on the CPU; the read decides the result: 0 * x is
+# not folded away without -ffast-math), each put before a call of the reference as the lab's
+# own function: LOOP.format(x=a float of the call's arguments) and CRASH.format(c=a bool of them).
+LOOP = "float acc = 0.0f;\n  for (uint i = 4u; i >= 0u; --i) {{\n    acc += {x};\n  }}\n"
+CRASH = "0.0f * materials[100000000 + int({c})].metallic"
+
+
+def other_kinds(lab, rel, endless, crash, wrong, work, out):
+    """The submissions of every kind besides the lab's answers (issue 47): an endless loop, a
+    crash, a folder without the file, and the attacks (fixtures.attacks), aimed at work and out
+    (the grading run's folders; None: nowhere). endless, crash, wrong: whole lab files."""
+    work, out = work or "/nonexistent", out or "/nonexistent"
+    return {"f_endless_loop.glsl": endless, "g_crash.glsl": crash, "h_empty/README.txt": f"lab{lab}.glsl was forgotten\n",
+            **attacks(rel, [rel], wrong, work, out)}
+
+
 def lab2_fixtures(folder, work=None, out=None):
     """Lab 2's submissions. work and out (the grading run's folders) aim the attacks."""
     work, out = work or "/nonexistent", out or "/nonexistent"
@@ -154,7 +171,7 @@ def lab2_fixtures(folder, work=None, out=None):
     }, also=reference(rel))
 
 
-def lab4_fixtures(folder):
+def lab4_fixtures(folder, work=None, out=None):
     rel = "common/kernel/triangle_light.glsl"
     renames = {"LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick)": "reference_sample",
                "float triangle_light_pdf(uint index, vec3 wi, float dist)": "reference_pdf"}
@@ -171,6 +188,9 @@ def lab4_fixtures(folder):
         # Only the pdf of a given direction is wrong: stage4 never calls it, the tests do, the
         # held-back one ([held_back], not in the handout) among them.
         "c_pdf_mismatch.glsl": variant(pdf="return 2.0f * reference_pdf(index, wi, dist);"),
+        **other_kinds(4, rel, variant(sample=LOOP.format(x="u.x") + "  return reference_sample(index, p, u + vec2(0.0f * acc), pick);"),
+                      variant(sample="return reference_sample(index, p, u + vec2(" + CRASH.format(c="u.y > 2.0f") + "), pick);"),
+                      variant(sample="return reference_sample(index, p, u, 2.0f * pick);"), work, out),
     }, also=reference("common/kernel/emission_rule.glsl"))
     # Lab 4's known-wrong answers (labs/mutants.h): a factor of the pdf d^2 / (cos_y area) x
     # P(light) left out in the sample and in triangle_light_pdf alike (with_pdf() multiplies

@@ -154,27 +154,52 @@ def sandbox_alone(lab, fixtures, reference_file, subs, out, work, timeout):
 # the stages the lab's tests run (their tags; the other stages' kernels get the traps).
 STAGE_FOLDERS = ["stage1_raycast", "stage2_montecarlo", "stage3_importance", "stage4_direct_indirect", "stage5_mis",
                  "stage6_variance_aware"]
+# Then the lab's reference file and the function its endless loop is in.
 SMALL_LABS = {
-    3: (lab3_fixtures, [], "stage2_montecarlo", range(1, 6)),
-    5: (lab5_fixtures, [], "stage2_montecarlo", range(1, 5)),
-    6: (lab6_fixtures, [], "stage5_mis", range(1, 6)),
+    3: (lab3_fixtures, [], "stage2_montecarlo", range(1, 6), "common/kernel/cosine_hemisphere.glsl", "sample_cosine_hemisphere"),
+    5: (lab5_fixtures, [], "stage2_montecarlo", range(1, 5), "common/kernel/box_slab.glsl", "box_span"),
+    6: (lab6_fixtures, [], "stage5_mis", range(1, 6), "common/kernel/mis.glsl", "power_heuristic"),
 }
+
+
+def other_kinds_expected(lab, rel, loop_function):
+    """The verdicts of the other kinds of submission (fixtures.other_kinds): the endless loop
+    TIMEOUT (naming loop_function where gdb is installed) with g++'s warning, the crash, the
+    empty folder, the attacks REFUSED by the source check."""
+    preprocessor = rf"REFUSED labs/lab{lab}\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*"
+    named = rf"in {loop_function}\(\) " if shutil.which("gdb") else ""
+    return {"f_endless_loop": (rf"TIMEOUT {named}after \S+ s.* "
+                               rf"\(warning: labs/lab{lab}\.glsl:\d+(:\d+)?: warning: comparison .* always true.*\)"),
+            "g_crash": r'CRASH SIGSEGV in ".*"',
+            "h_empty": rf"COMPILE ERROR no lab{lab}\.glsl in the submission",
+            "r_includes_reference": rf"REFUSED labs/lab{lab}\.glsl:1: includes the reference solution {re.escape(rel)}",
+            "r_writes_outside": preprocessor, "r_rewrites_report": preprocessor, "r_prints_1gb": preprocessor}
+
+
+def other_kinds_after(lab, fixtures, rel, subs, out, work, timeout):
+    """After the grading run: nothing planted, nothing written into the repository; then the
+    attacks again with the source check off (sandbox_alone)."""
+    nothing_planted(work)
+    no_pictures_in_repository()
+    sandbox_alone(lab, fixtures, rel, subs + "_attacks", out + "_attacks", work, timeout)
 
 
 def small_lab(lab, subs, out, work):
     """Lab 3, 5 or 6: the correct file passes, the one that does not compile says where, each
     wrong answer fails with a suspect; the student's code only in the kernels of the stages the
     lab's tests run."""
-    fixtures, wrong, includer, stages = SMALL_LABS[lab]
+    fixtures, wrong, includer, stages, rel, loop_function = SMALL_LABS[lab]
     os.makedirs(subs)
-    fixtures(subs)
+    fixtures(subs, work, out)
     expected = {"a_correct": r"PASS", "b_syntax_error": rf"COMPILE ERROR labs/lab{lab}\.glsl:\d+(:\d+)?: error: .*"}
     for name in wrong + ["m_" + m for m in written_mutants(subs, lab)]:
         expected[name] = FAIL
+    expected.update(other_kinds_expected(lab, rel, loop_function))
     lines, summary = grade(lab, subs, out, work, TIMEOUT)
     check_lines(lines, expected)
     check_summary(summary, expected)
     graded_kernels(work, lab, [f"stage{k}" for k in stages], STAGE_FOLDERS[max(stages):], includer)
+    other_kinds_after(lab, fixtures, rel, subs, out, work, TIMEOUT)
 
 
 # Lab 1's tests take about 1.5 s per submission on 2 quiet cores; its endless loop waits this long.
@@ -191,38 +216,25 @@ def lab1(subs, out, work, extra=()):
     os.makedirs(subs)
     lab1_fixtures(subs, work, out)
     lines, summary = grade(1, subs, out, work, LAB1_TIMEOUT, extra)
-    preprocessor = r"REFUSED labs/lab1\.glsl:\d+: the preprocessor line '#ifdef __cplusplus': .*"
-    expected = {
-        "a_correct": r"PASS",
-        "b_syntax_error": r"COMPILE ERROR labs/lab1\.glsl:\d+(:\d+)?: error: .*",
-        "c_dimmed": FAIL,
-        "c_black_sky": FAIL,
-        "f_endless_loop": (r"TIMEOUT " + (r"in Li\(\) " if shutil.which("gdb") else "") + r"after \S+ s.* "
-                           r"\(warning: labs/lab1\.glsl:\d+(:\d+)?: warning: comparison .* always true.*\)"),
-        "g_crash": r"CRASH SIGSEGV in \".*\"",
-        "h_empty": r"COMPILE ERROR no lab1\.glsl in the submission",
-        "r_includes_reference": r"REFUSED labs/lab1\.glsl:1: includes the reference solution stage1_raycast/integrator\.glsl",
-        "r_writes_outside": preprocessor,
-        "r_rewrites_report": preprocessor,
-        "r_prints_1gb": preprocessor,
-    }
+    rel = "stage1_raycast/integrator.glsl"
+    expected = {"a_correct": r"PASS", "b_syntax_error": r"COMPILE ERROR labs/lab1\.glsl:\d+(:\d+)?: error: .*",
+                "c_dimmed": FAIL, "c_black_sky": FAIL, **other_kinds_expected(1, rel, "Li")}
     check_lines(lines, expected)
     check_summary(summary, expected)
     graded_kernels(work, 1, [f"stage{k}" for k in range(1, 6)], STAGE_FOLDERS[5:], "stage1_raycast")
-    nothing_planted(work)
-    no_pictures_in_repository()
-    sandbox_alone(1, lab1_fixtures, "stage1_raycast/integrator.glsl", subs + "_attacks", out + "_attacks", work,
-                  LAB1_TIMEOUT)
+    other_kinds_after(1, lab1_fixtures, rel, subs, out, work, LAB1_TIMEOUT)
 
 
 def lab4(subs, out, work):
     os.makedirs(subs)
-    lab4_fixtures(subs)
+    lab4_fixtures(subs, work, out)
     mutants = written_mutants(subs, 4)
-    expected = {"a_correct": r"PASS", "b_pdf_doubled": FAIL, "c_pdf_mismatch": FAIL}
+    rel = "common/kernel/triangle_light.glsl"
+    expected = {"a_correct": r"PASS", "b_pdf_doubled": FAIL, "c_pdf_mismatch": FAIL,
+                **other_kinds_expected(4, rel, "sample_triangle_light")}
     for mutant in mutants:
         expected["m_" + mutant] = FAIL
-    lines, summary = grade(4, subs, out, work, "300")  # no endless loop among them
+    lines, summary = grade(4, subs, out, work, TIMEOUT)
     check_lines(lines, expected)
     check_summary(summary, expected)
     failed = {row["name"]: row["failed_tests"].split("\n")
@@ -232,3 +244,4 @@ def lab4(subs, out, work):
     expect(any(n.startswith("light sampling: triangle_light_pdf is d^2 / (cos_y area) times the pick")
                for n in failed["c_pdf_mismatch"]), "c_pdf_mismatch fails the held-back test", repr(failed["c_pdf_mismatch"]))
     graded_kernels(work, 4, [f"stage{k}" for k in range(1, 6)], ["stage6_variance_aware"])
+    other_kinds_after(4, lab4_fixtures, rel, subs, out, work, TIMEOUT)
