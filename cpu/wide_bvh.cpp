@@ -149,6 +149,7 @@ WideBvh build_wide_bvh(const Bvh& bvh, std::span<const Triangle> triangles, unsi
   WideBvh out;
   if (bvh.nodes.empty()) return out;
   out.source = bvh.nodes.data();
+  out.shading = triangles.data();
   for (int k = 0; k < 3; k++) out.root_lo[k] = bvh.nodes[0].lo[k], out.root_hi[k] = bvh.nodes[0].hi[k];
   Collapser collapser(bvh, triangles, leaf_max, out);
   collapser.build();

@@ -43,6 +43,10 @@ struct WideBvh {
   std::vector<WideBlock> blocks;
   const BvhNode* source = nullptr;  // the binary tree's nodes it was built from
   float root_lo[3] = {}, root_hi[3] = {};  // the root's box: the walk's margin for every box
+  // The triangles it was built of: the walk prefetches the nearest hit's as it finds it, since
+  // the kernel reads that triangle next (intersect.glsl's surface_at), a cache miss on a large
+  // mesh. Only a hint: a prefetch never faults, even of a pointer gone stale.
+  const Triangle* shading = nullptr;
 };
 
 // Collapses the binary tree: a subtree of at most leaf_max (1 ... 8) triangles becomes one

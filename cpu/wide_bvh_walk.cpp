@@ -84,6 +84,10 @@ template <int bytes>
       }
     } else {
       best = walk.template leaf<true>(bvh.blocks[std::size_t(~ref)], best);
+      if (best.kind == kPrimTriangle && bvh.shading) {  // the triangle the kernel reads next (48 bytes)
+        const char* tri = reinterpret_cast<const char*>(bvh.shading + best.prim);
+        __builtin_prefetch(tri), __builtin_prefetch(tri + sizeof(pt::Triangle) - 1);
+      }
     }
     // Nothing below: the next pending child that a hit could still lie in.
     while (top > 0 && !(stack_t[top - 1] <= best.t)) top--;
