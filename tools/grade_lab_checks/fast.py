@@ -135,6 +135,18 @@ def report_checks():
     # is kept (the grader's FAIL, not REFUSED, tools/grading/submission.py).
     expect(cut.running_failure == "its check mean == 2 failed with 1.013 == 2",
            "a report cut short keeps the running test's first failure", repr(cut.running_failure))
+    # A garbled report: REFUSED from a program that exited, CRASH from one that died of a signal.
+    from grading.sandbox import Result
+    from grading.submission import Grade, judge
+    garbled = read_report((doc[:200] + "<<" + doc[200:]).encode(), ["a; b, c", "d"])
+    verdicts = []
+    for rc in (1, -11):
+        g, r = Grade("x", "x.glsl"), Result()
+        r.rc = rc
+        judge(g, {"tests": ["a; b, c", "d"], "args": None}, r, garbled, 0)
+        verdicts.append(g.verdict)
+    expect(garbled.problem is not None and verdicts == ["REFUSED", "CRASH"],
+           "a garbled report is REFUSED, or the CRASH of a program that died of a signal", repr(verdicts))
     fine = read_report(doc[:doc.index("<TestCase name=\"d\"") + 40].encode(), ["a; b, c", "d"])
     expect(fine.running == "d" and fine.running_failure is None, "a running test with no failed check has none",
            repr(fine.running_failure))

@@ -234,7 +234,9 @@ def judge(g, ctx, r, rep, written):
         g.verdict, g.detail = "REFUSED", f"the tests printed more than {cap[r.over_cap] // MiB} MB on {r.over_cap}"
     elif written > FOLDER_CAP:
         g.verdict, g.detail = "REFUSED", f"the tests wrote {written // MiB} MB into their folder (at most {FOLDER_CAP // MiB} MB)"
-    elif rep.problem:
+    elif rep.problem and not died:
+        # (A program that died of a signal may have left its report garbled, two threads' fatal
+        # errors written over each other: that is its crash, below, never a PASS either.)
         g.verdict, g.detail = "REFUSED", f"the test report is not the test program's own: {rep.problem}"
     elif r.timed_out or (died and sig == 24):  # SIGXCPU: the CPU-time limit
         g.verdict = "TIMEOUT"
