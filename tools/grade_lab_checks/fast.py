@@ -140,12 +140,12 @@ def report_checks():
     from grading.submission import Grade, judge
     garbled = read_report((doc[:200] + "<<" + doc[200:]).encode(), ["a; b, c", "d"])
     verdicts = []
-    for rc in (1, -11):
+    for rc in (1, 255, -11, 139):
         g, r = Grade("x", "x.glsl"), Result()
         r.rc = rc
         judge(g, {"tests": ["a; b, c", "d"], "args": None}, r, garbled, 0)
         verdicts.append(g.verdict)
-    expect(garbled.problem is not None and verdicts == ["REFUSED", "CRASH"],
+    expect(garbled.problem is not None and verdicts == ["REFUSED", "REFUSED", "CRASH", "CRASH"],
            "a garbled report is REFUSED, or the CRASH of a program that died of a signal", repr(verdicts))
     fine = read_report(doc[:doc.index("<TestCase name=\"d\"") + 40].encode(), ["a; b, c", "d"])
     expect(fine.running == "d" and fine.running_failure is None, "a running test with no failed check has none",

@@ -220,8 +220,9 @@ def judge(g, ctx, r, rep, written):
     """g's verdict from the sealed run of its tests (r: how it ended; rep: its report)."""
     g.total = len(ctx["tests"])
     g.passed = sum(1 for _, ok, _ in rep.cases if ok)
-    died = (r.rc < 0 or r.rc > 128) and not rep.whole
-    sig = -r.rc if r.rc < 0 else r.rc - 128
+    # A signal: a negative return code, or bwrap's 128 + the signal (1 to 64; 255 is an exit).
+    sig = -r.rc if r.rc < 0 else r.rc - 128 if r.rc > 128 else 0
+    died = 0 < sig <= 64 and not rep.whole
     cap = {"stdout": TEST_LIMITS.stdout_cap, "stderr": TEST_LIMITS.stderr_cap, "report": TEST_LIMITS.stdout_cap}
     if r.over_cap == "report" and rep.running_failure and not rep.problem:
         # A wrong answer whose check fails in a loop (every pixel) fills the report: FAIL, with
