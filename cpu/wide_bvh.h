@@ -43,7 +43,7 @@ struct WideBvh {
   std::vector<WideBlock> blocks;
   const BvhNode* source = nullptr;  // the binary tree's nodes it was built from
   float root_lo[3] = {}, root_hi[3] = {};  // the root's box: the walk's margin for every box
-  // The triangles it was built of: the walk prefetches the nearest hit's as it finds it, since
+  // The triangles it was built of: the walk prefetches the best hit's after each leaf, since
   // the kernel reads that triangle next (intersect.glsl's surface_at), a cache miss on a large
   // mesh. Only a hint: a prefetch never faults, even of a pointer gone stale.
   const Triangle* shading = nullptr;

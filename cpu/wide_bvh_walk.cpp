@@ -51,18 +51,17 @@ constexpr int kWideStack = int(kBvhStackSize) * kWideWidth;
 
 template <int bytes>
 [[gnu::always_inline]] inline pt::WideHit nearest(const pt::WideBvh& bvh, const pt::WideRay& ray, pt::WideHit in) {
-  const Walk<bytes> walk(ray);
+  const Walk<bytes> walk(ray, root_pad(bvh, ray));
   Hit best(in.t, in.b1, in.b2, uint(in.prim), in.prim >= 0 ? kPrimTriangle : kPrimNone);
   std::int32_t stack_ref[kWideStack];
   float stack_t[kWideStack];
   int top = 0;
   std::int32_t ref = 0;
-  const auto pad = lanes_splat<typename Walk<bytes>::F>(root_pad(bvh, ray));  // every box's margin
   while (true) {
     if (ref >= 0) {
       const pt::WideNode& n = bvh.nodes[std::size_t(ref)];
       float enter[pt::kWideWidth];
-      unsigned bits = walk.children(n, best.t, pad, enter);
+      unsigned bits = walk.children(n, best.t, enter);
       if (bits != 0u) {
         int i = __builtin_ctz(bits);
         bits &= bits - 1u;
@@ -100,18 +99,17 @@ template <int bytes>
 
 template <int bytes>
 [[gnu::always_inline]] inline bool occluded(const pt::WideBvh& bvh, const pt::WideRay& ray, float t_max) {
-  const Walk<bytes> walk(ray);
+  const Walk<bytes> walk(ray, root_pad(bvh, ray));
   const Hit none(t_max, 0.0f, 0.0f, 0u, kPrimNone);
   std::int32_t stack_ref[kWideStack];
   int top = 0;
   stack_ref[top++] = 0;
-  const auto pad = lanes_splat<typename Walk<bytes>::F>(root_pad(bvh, ray));  // every box's margin
   while (top > 0) {
     const std::int32_t ref = stack_ref[--top];
     if (ref >= 0) {
       const pt::WideNode& n = bvh.nodes[std::size_t(ref)];
       float enter[pt::kWideWidth];
-      for (unsigned bits = walk.children(n, t_max, pad, enter); bits != 0u; bits &= bits - 1u)
+      for (unsigned bits = walk.children(n, t_max, enter); bits != 0u; bits &= bits - 1u)
         stack_ref[top++] = n.child[__builtin_ctz(bits)];
     } else if (walk.template leaf<false>(bvh.blocks[std::size_t(~ref)], none).kind != kPrimNone) {
       return true;

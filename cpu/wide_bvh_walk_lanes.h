@@ -1,8 +1,7 @@
 // The CPU walk's tests on SIMD lanes (the step after the article's GPU section, which ends
 // "yet without an acceleration structure"): Walk, a ray as the lanes take it, with a node's 8
 // boxes tested by box_span() of common/kernel/box_slab.glsl on each lane (grown by the margin
-// of the node's own box) and a leaf's triangles by hit_triangle_lanes(); and the root's
-// margin. Part of cpu/wide_bvh_walk.cpp, which includes it inside its anonymous namespace,
+// of the root's box) and a leaf's triangles by hit_triangle_lanes(); and the root's margin. Part of cpu/wide_bvh_walk.cpp, which includes it inside its anonymous namespace,
 // after the kernel's constants and triangle_lane_ops.h, once per instruction set: it is not a
 // header of its own. Lab 5's answer here (the clamp of the inverse direction and the slab
 // test) is marked for tools/make_lab_handout.py, which cuts it from the handout.
@@ -15,8 +14,8 @@ template <int bytes> struct Walk {
   static constexpr int parts = pt::kWideWidth / L::count;
 
   F o[3], inv[3];  // box_span()'s ray, world axes
-  I flip[3];  // per axis, the sign bit of inv (all lanes): the box's near side is then its hi
-  bool back[3];  // the same as bools
+  bool back[3];  // per axis, inv < 0 (its sign bit): the box's near side is then its hi
+  F grow[3];  // per axis, the root's margin, negated where back: what the near side moves by
   LaneRay<bytes> tri;  // hit_triangle()'s ray, the ray's axes
   int axis[3];
 
@@ -39,13 +38,14 @@ template <int bytes> struct Walk {
   // The loops over the 3 axes are unrolled (#pragma GCC unroll): GCC kept them as loops, and
   // the slab test's differences then went through the stack at every node; unrolled they
   // stay in registers, the same operations (0.87 to 0.90 of the walk's CPU time, issue 50).
-  [[gnu::always_inline]] explicit Walk(const pt::WideRay& ray) {
+  // pad: the root's margin (root_pad below), every box's, so known once per ray.
+  [[gnu::always_inline]] Walk(const pt::WideRay& ray, float pad) {
 #pragma GCC unroll 3
     for (int k = 0; k < 3; k++) {
       const float v = inverse_axis(ray.dir[k]);
       o[k] = lanes_splat<F>(ray.origin[k]), inv[k] = lanes_splat<F>(v);
       back[k] = std::signbit(v);
-      flip[k] = I{} + (back[k] ? std::int32_t(0x80000000u) : 0);
+      grow[k] = lanes_splat<F>(back[k] ? -pad : pad);
     }
     axis[0] = ray.kx, axis[1] = ray.ky, axis[2] = ray.kz;
     tri = LaneRay<bytes>{lanes_splat<F>(ray.origin[ray.kx]), lanes_splat<F>(ray.origin[ray.ky]),
@@ -53,35 +53,30 @@ template <int bytes> struct Walk {
                          lanes_splat<F>(ray.sy),             lanes_splat<F>(ray.sz)};
   }
 
-  // box_span() on the children [at, at + L::count) of n, each grown by `pad`, the margin of
-  // the root's box: the mask of those hit within [0, t_max] (used slots only) and their entry
+  // box_span() on the children [at, at + L::count) of n, each grown by the margin of the
+  // root's box: the mask of those hit within [0, t_max] (used slots only) and their entry
   // distances. The root's margin is at least each box's own (a box lies in the root's, so its
   // corners are no farther from the origin, and rounding is monotone): the test stays as
   // conservative as box_span(), and the margin is known once per ray, not computed per box.
-  [[gnu::always_inline]] I boxes(const pt::WideNode& n, int at, float t_max, [[maybe_unused]] F pad, F& enter) const {
+  [[gnu::always_inline]] I boxes(const pt::WideNode& n, int at, float t_max, F& enter) const {
     F t_enter = F{}, t_exit = lanes_splat<F>(t_max);
     // The slab test on lanes is box_span()'s, lab 5's answer: its handout leaves it out
     // (tools/make_lab_handout.py), and there every used child within [0, t_max] is hit,
     // which finds the same hits, only slower.
     // [lab 5 answer]
     // The sides by the ray's direction: along an axis with inv >= 0 the near side is lo, as
-    // box_span()'s t0 < t1 picks it, and a side grown by -pad (lo) is one grown by pad ^ sign
-    // (both exact): the same values as box_span()'s, without its compare and two selects.
+    // box_span()'s t0 < t1 picks it, and a side grown by -pad (lo) is one grown by grow (both
+    // exact): the same values as box_span()'s, without its compare and two selects.
     F a_near[3], a_far[3];
 #pragma GCC unroll 3
     for (int k = 0; k < 3; k++) {
       a_near[k] = L::load((back[k] ? n.hi[k] : n.lo[k]) + at) - o[k];
       a_far[k] = L::load((back[k] ? n.lo[k] : n.hi[k]) + at) - o[k];
     }
-    I pad_bits;
-    __builtin_memcpy(&pad_bits, &pad, sizeof pad_bits);
 #pragma GCC unroll 3
     for (int k = 0; k < 3; k++) {
-      F grow;
-      const I bits = pad_bits ^ flip[k];
-      __builtin_memcpy(&grow, &bits, sizeof grow);
-      const F near = (a_near[k] - grow) * inv[k];
-      const F far = (a_far[k] + grow) * inv[k] * kBoxRoundUp;
+      const F near = (a_near[k] - grow[k]) * inv[k];
+      const F far = (a_far[k] + grow[k]) * inv[k] * kBoxRoundUp;
       t_enter = near > t_enter ? near : t_enter;
       t_exit = far < t_exit ? far : t_exit;
     }
@@ -92,13 +87,13 @@ template <int bytes> struct Walk {
     return (t_enter <= t_exit) & (child != pt::kWideEmpty);
   }
 
-  // The mask of the 8 children hit (grown by pad, the root's margin), one bit each, and
-  // their entry distances.
-  [[gnu::always_inline]] unsigned children(const pt::WideNode& n, float t_max, F grow, float* enter) const {
+  // The mask of the 8 children hit (grown by the root's margin), one bit each, and their
+  // entry distances.
+  [[gnu::always_inline]] unsigned children(const pt::WideNode& n, float t_max, float* enter) const {
     unsigned bits = 0u;
     for (int p = 0; p < parts; p++) {
       F e;
-      const I hit = boxes(n, p * L::count, t_max, grow, e);
+      const I hit = boxes(n, p * L::count, t_max, e);
       __builtin_memcpy(enter + p * L::count, &e, sizeof e);
       bits |= lane_bits(hit) << (p * L::count);
     }

@@ -5,11 +5,11 @@
 #pragma once
 
 #include <sys/types.h>
+#include <sys/wait.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <thread>
 
@@ -17,19 +17,15 @@ namespace pt_test {
 
 // Waits (up to 60 s) until process `pid` runs `program` (the forked test process before exec
 // has Catch's own handlers) and catches signal `signo` (bit signo-1 of SigCgt in
-// /proc/PID/status); or until it has ended (a zombie, state Z in /proc/PID/stat: a program that
-// crashed as it started, which the caller's waitpid then reports at once, not after 60 s).
+// /proc/PID/status); or until it has ended (a program that crashed as it started: waitid
+// without reaping it, so that the caller's waitpid then reports it at once, not after 60 s).
 inline void wait_for_handler(pid_t pid, const std::string& program, int signo) {
   namespace fs = std::filesystem;
   const fs::path exe = fs::canonical(program);
   for (int i = 0; i < 6000; i++) {
     std::error_code ec;
-    {
-      std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-      std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
-      const std::size_t end = text.rfind(')');  // the state follows the command's name, which may hold ") "
-      if (!stat || end == std::string::npos || text.compare(end, 3, ") Z") == 0) return;
-    }
+    siginfo_t ended{};
+    if (::waitid(P_PID, id_t(pid), &ended, WEXITED | WNOHANG | WNOWAIT) == 0 && ended.si_pid == pid) return;
     if (fs::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec) == exe) {
       std::ifstream status("/proc/" + std::to_string(pid) + "/status");
       std::string line;

@@ -103,18 +103,18 @@ LOOP = "float acc = 0.0f;\n  for (uint i = 4u; i >= 0u; --i) {{\n    acc += {x};
 CRASH = "0.0f * materials[100000000 + int({c})].metallic"
 
 
-def other_kinds(lab, rel, endless, crash, wrong, work, out):
+def other_kinds(lab, rel, endless, crash, wrong, work, out, references=None):
     """The submissions of every kind besides the lab's answers (issue 47): an endless loop, a
-    crash, a folder without the file, and the attacks (fixtures.attacks), aimed at work and out
-    (the grading run's folders; None: nowhere). endless, crash, wrong: whole lab files."""
+    crash, a folder without the file, and the attacks (fixtures.attacks; references: the lab's
+    reference files, default [rel]), aimed at work and out (the grading run's folders; None:
+    nowhere). endless, crash, wrong: whole lab files."""
     work, out = work or "/nonexistent", out or "/nonexistent"
     return {"f_endless_loop.glsl": endless, "g_crash.glsl": crash, "h_empty/README.txt": f"lab{lab}.glsl was forgotten\n",
-            **attacks(rel, [rel], wrong, work, out)}
+            **attacks(rel, references or [rel], wrong, work, out)}
 
 
 def lab2_fixtures(folder, work=None, out=None):
     """Lab 2's submissions. work and out (the grading run's folders) aim the attacks."""
-    work, out = work or "/nonexistent", out or "/nonexistent"
     rel = "common/kernel/uniform_hemisphere.glsl"
     renames = {"vec3 sample_uniform_hemisphere(vec2 u)": "reference_sampler",
                "float uniform_hemisphere_pdf()": "reference_pdf"}
@@ -136,20 +136,15 @@ def lab2_fixtures(folder, work=None, out=None):
         # The reference's cos(theta) is u.x: feeding it cos of a uniform angle makes theta uniform.
         "d_theta_uniform.glsl": variant(sampler="return reference_sampler(vec2(cos(0.5f * kPi * u.x), u.y));"),
         "e_convention/lab2.glsl": variant(sampler="return reference_sampler(vec2(u.y, u.x));"),
-        # A count down on an unsigned i that never ends (g++ warns: always true).
-        "f_endless_loop.glsl": variant(sampler="float acc = 0.0f;\n  for (uint i = 4u; i >= 0u; --i) {\n"
-                                               "    acc += u.x;\n  }\n  return reference_sampler(u + vec2(0.0f * acc));"),
-        # A read far past the end of the scene's materials: SIGSEGV on the CPU (the read decides
-        # the sample: 0 * x is not folded away without -ffast-math).
-        "g_crash.glsl": variant(sampler="return reference_sampler(u + vec2(0.0f * materials[100000000 + int(u.y)].metallic));"),
-        "h_empty/README.txt": "lab2.glsl was forgotten\n",
         # Lab 2's other known-wrong answers (labs/mutants.h; d_theta_uniform is its
         # uniform_theta_uniform), each the renamed reference wrapped to make that mistake.
         "m_uniform_no_radius.glsl": variant(sampler="vec3 v = reference_sampler(u);\n  "
                                                     "float r = max(length(vec2(v.x, v.y)), 1e-30f);\n  "
                                                     "return vec3(v.x / r, v.y / r, v.z);"),
         "m_uniform_pdf_one_over_pi.glsl": variant(pdf="return 1.0f / kPi;"),
-        **attacks(rel, REFERENCES_2, no_pdf, work, out),
+        **other_kinds(2, rel, variant(sampler=LOOP.format(x="u.x") + "  return reference_sampler(u + vec2(0.0f * acc));"),
+                      variant(sampler="return reference_sampler(u + vec2(" + CRASH.format(c="u.y > 2.0f") + "));"),
+                      no_pdf, work, out, REFERENCES_2),
     }, also=reference("common/kernel/russian_roulette.glsl"))
     # The bounce weight: the printed factor (erratum 1), the cosine or the pdf left out.
     write(folder, {

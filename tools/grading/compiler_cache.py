@@ -16,6 +16,7 @@ import subprocess
 # Read from the user's ccache and handed into the sandbox, whose environment is cleared.
 PASSED = {"cache_dir": "CCACHE_DIR", "base_dir": "CCACHE_BASEDIR", "sloppiness": "CCACHE_SLOPPINESS",
           "compiler_check": "CCACHE_COMPILERCHECK"}
+SUBMISSION_ENV = {"CCACHE_DISABLE": "1"}  # a submission's build (and a set-up without it): the compiler itself
 
 
 class CompilerCache:
@@ -36,7 +37,7 @@ class CompilerCache:
     def setup_env(self, build):
         """The set-up's environment: the user's cache read-only, temporary files in build."""
         if not self.enabled:
-            return {"CCACHE_DISABLE": "1"}
+            return dict(SUBMISSION_ENV)
         env = {PASSED[k]: v for k, v in self.settings.items() if v}
         env.update({"CCACHE_READONLY": "1", "CCACHE_NOSTATS": "1", "CCACHE_TEMPDIR": os.path.join(build, "ccache-tmp")})
         return env
@@ -44,9 +45,6 @@ class CompilerCache:
     def readonly(self):
         """The folders the set-up's sandbox sees read-only besides the work copy: the cache."""
         return [self.settings["cache_dir"]] if self.enabled else []
-
-
-SUBMISSION_ENV = {"CCACHE_DISABLE": "1"}  # a submission's build: the compiler itself, never the cache
 
 
 def compiler_cache(wanted):
