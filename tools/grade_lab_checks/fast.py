@@ -1,7 +1,7 @@
 """The quick part of tools/test_grade_lab.py (--fast, ctest entry grade_lab_fast; tooling for
 teachers, not a part of the article): bad usage, no bubblewrap, the source check, the
-sandbox's walls, the report, the tests' shards, the lab pages' hint tables, the CSV's quoting,
-the rebuilds."""
+sandbox's walls, the report, a crash's test, the tests' shards, the lab pages' hint tables,
+the CSV's quoting, the rebuilds."""
 import csv
 import json
 import os
@@ -152,6 +152,34 @@ def report_checks():
            repr(fine.running_failure))
 
 
+def crash_names_its_test(pt_tests, tmp, runs=6):
+    """A test program whose two threads die of SIGSEGV at once (pt_tests' hidden crash probe,
+    tests/test_main.cpp; Catch2's own handler garbled its report then, or died of SIGABRT) dies
+    of SIGSEGV with one line on stderr, and the verdict is CRASH SIGSEGV in that test: by the
+    name the program wrote as the test started, and by its report alone."""
+    from grading.lab_tests import read_report
+    from grading.sandbox import Result
+    from grading.submission import Grade, judge, running_test
+    probe = "grader: two threads die of SIGSEGV at once"
+    details = set()
+    for k in range(runs):
+        report, running = os.path.join(tmp, f"probe{k}.xml"), os.path.join(tmp, f"probe{k}.txt")
+        done = subprocess.run([pt_tests, "[crash_probe]", "-r", "xml", "-o", report], capture_output=True,
+                              env={**os.environ, "PT_TEST_RUNNING_FILE": running}, timeout=60)
+        g, r = Grade("x", "x.glsl"), Result()
+        r.rc, r.running_test = done.returncode, running_test(running, [probe])
+        rep = read_report(open(report, "rb").read() if os.path.exists(report) else b"", [probe])
+        judge(g, {"tests": [probe], "args": None}, r, rep, 0)
+        details.add(f"{g.verdict} {g.detail}")
+        g, r.running_test = Grade("x", "x.glsl"), None
+        judge(g, {"tests": [probe], "args": None}, r, rep, 0)
+        details.add(f"{g.verdict} {g.detail}")
+        details.add(f"rc {done.returncode}: " + done.stderr.decode(errors="replace").strip().splitlines()[-1])
+    expect(details == {f'CRASH SIGSEGV in "{probe}"', f'rc -11: FATAL SIGSEGV in test "{probe}"'},
+           "a crash in two threads at once names its test", repr(details))
+    expect(running_test(running, ["another test"]) is None, "a name that is not one of the lab's tests is not taken")
+
+
 def hint_tables(pt_tests):
     """Every lab page has the table, and each of its rows names a test of the lab's program."""
     from grading.hints import matches, read_hints
@@ -253,6 +281,8 @@ def fast(pt_tests):
         source_checks(tmp)
         report_checks()
         shard_checks(pt_tests, tmp)
+        if pt_tests:
+            crash_names_its_test(pt_tests, tmp)
         hint_tables(pt_tests)
         csv_quoting(tmp)
         sealed = sandbox_checks(tmp)

@@ -55,6 +55,7 @@ class Result:
         self.stdout, self.stderr, self.report, self.seconds = b"", b"", b"", 0.0
         self.cpu_seconds = 0.0  # user + system time of the command and what it waited for (GNU time)
         self.running_function = None  # what on_timeout found running, if anything
+        self.running_test = None  # the test the program started last (grading/submission.py)
 
 
 class Sandbox:

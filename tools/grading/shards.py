@@ -128,6 +128,7 @@ def merge_results(results):
     worst = max(results, key=lambda r: (r.timed_out, r.over_cap is not None, r.rc < 0 or r.rc > 128, r.rc != 0))
     merged.rc, merged.timed_out, merged.over_cap = worst.rc, worst.timed_out, worst.over_cap
     merged.running_function = next((r.running_function for r in results if r.running_function), None)
+    merged.running_test = worst.running_test
     merged.stdout = b"".join(r.stdout for r in results)
     merged.stderr = b"".join(r.stderr for r in results)
     merged.report = b""  # the shards' reports are read one by one (merge_reports)

@@ -193,14 +193,19 @@ def run_tests(g, ctx):
     env = {"PT_TEST_PICTURES": os.path.join(run, "test_pictures")}
     groups = plan(by_file, read_durations(ctx["durations"], ctx["args"].lab), ctx["args"].jobs) if by_file else [None]
 
-    def shard(files):
+    def shard(k, files):
         specs = ctx["specs"] if files is None else shard_specs(ctx["specs"], files)
         cmd = [ctx["test_bin"], "-#", "-d", "yes", "-r", "xml", "-o", "{report}"] + specs
-        return box.run(cmd, run, [run], [ctx["src"], ctx["build"]], box.hidden_in_tests, TEST_LIMITS,
-                       ctx["args"].timeout, env=env, report=True, on_timeout=ctx.get("on_timeout"))
+        # The test each shard started last (tests/test_main.cpp writes it unbuffered): a crash's name.
+        running = os.path.join(run, f"running.{k}.txt")
+        r = box.run(cmd, run, [run], [ctx["src"], ctx["build"]], box.hidden_in_tests, TEST_LIMITS,
+                    ctx["args"].timeout, env={**env, "PT_TEST_RUNNING_FILE": running}, report=True,
+                    on_timeout=ctx.get("on_timeout"))
+        r.running_test = running_test(running, ctx["tests"])
+        return r
 
     with ThreadPoolExecutor(len(groups)) as pool:
-        results = list(pool.map(shard, groups))
+        results = list(pool.map(shard, range(len(groups)), groups))
     reports = [read_report(r.report, ctx["tests"] if files is None else [n for f in files for n in by_file[f]])
                for r, files in zip(results, groups)]
     r, rep = merge_results(results), merge_reports(reports, ctx["tests"])
@@ -216,13 +221,24 @@ def run_tests(g, ctx):
         record_durations(ctx["durations"], rep.durations)
 
 
+def running_test(path, tests):
+    """The test named in path (PT_TEST_RUNNING_FILE) when it is one of the lab's tests, else None
+    (the student's code could write anything there: it names a crash, never decides a verdict)."""
+    try:
+        with open(path, "rb") as fh:
+            name = fh.read(4096).decode(errors="replace").rstrip("\n")
+    except OSError:
+        return None
+    return name if name in tests else None
+
+
 def judge(g, ctx, r, rep, written):
     """g's verdict from the sealed run of its tests (r: how it ended; rep: its report)."""
     g.total = len(ctx["tests"])
     g.passed = sum(1 for _, ok, _ in rep.cases if ok)
     # A signal: a negative return code, or bwrap's 128 + the signal (1 to 64; 255 is an exit).
     sig = -r.rc if r.rc < 0 else r.rc - 128 if r.rc > 128 else 0
-    died = 0 < sig <= 64 and not rep.whole
+    died = 0 < sig <= 64
     cap = {"stdout": TEST_LIMITS.stdout_cap, "stderr": TEST_LIMITS.stderr_cap, "report": TEST_LIMITS.stdout_cap}
     if r.over_cap == "report" and rep.running_failure and not rep.problem:
         # A wrong answer whose check fails in a loop (every pixel) fills the report: FAIL, with
@@ -241,22 +257,22 @@ def judge(g, ctx, r, rep, written):
         g.verdict, g.detail = "REFUSED", f"the test report is not the test program's own: {rep.problem}"
     elif r.timed_out or (died and sig == 24):  # SIGXCPU: the CPU-time limit
         g.verdict = "TIMEOUT"
-        where = r.running_function or (f"test \"{rep.running}\"" if rep.running else None)
+        test = r.running_test or rep.running
+        where = r.running_function or (f"test \"{test}\"" if test else None)
         g.detail = (f"in {where}" if where else "") + (
             f" after {ctx['args'].timeout:g} s" if r.timed_out else f" after {TEST_LIMITS.cpu_s} s of CPU time")
         g.detail = g.detail.strip()
-        if r.running_function and rep.running:
-            g.detail += f" (test \"{rep.running}\")"
+        if r.running_function and test:
+            g.detail += f" (test \"{test}\")"
         g.suspect = not_written(r)
     elif died and sig == 25:  # SIGXFSZ
         g.verdict, g.detail = "REFUSED", f"the tests wrote a file larger than {TEST_LIMITS.file_size // MiB} MB"
     elif died:
+        # In which test: the one the program started last (the test runner, tests/catch_runner.cpp,
+        # writes its name as it starts); else the report's unfinished one.
         g.verdict = "CRASH"
-        g.detail = signal_name(-sig) + (f" in \"{rep.running}\"" if rep.running else "")
-    elif any(why.startswith("a fatal error: SIG") for _, ok, why in rep.cases if not ok):
-        # Catch2 caught the signal, ended its report, then died of it.
-        name, why = next((n, w) for n, ok, w in rep.cases if not ok and w.startswith("a fatal error: SIG"))
-        g.verdict, g.detail = "CRASH", f"{why.split()[3]} in \"{name}\""
+        where = r.running_test or rep.running
+        g.detail = signal_name(-sig) + (" after its report ended" if rep.whole else f" in \"{where}\"" if where else "")
     else:
         failed = [(n, why) for n, ok, why in rep.cases if not ok]
         if not failed and rep.whole and r.rc == 0 and len(rep.cases) == g.total:
