@@ -157,9 +157,9 @@ def crash_names_its_test(pt_tests, tmp, runs=6):
     tests/test_main.cpp; Catch2's own handler garbled its report then, or died of SIGABRT) dies
     of SIGSEGV with one line on stderr, and the verdict is CRASH SIGSEGV in that test: by the
     name the program wrote as the test started, and by its report alone."""
-    from grading.lab_tests import read_report
+    from grading.lab_tests import read_report, running_test
     from grading.sandbox import Result
-    from grading.submission import Grade, judge, running_test
+    from grading.submission import Grade, judge
     probe = "grader: two threads die of SIGSEGV at once"
     details = set()
     for k in range(runs):

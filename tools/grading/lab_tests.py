@@ -2,7 +2,8 @@
 teachers, not a part of the article): which of pt_tests's Catch2 tests grade lab LAB (the
 ctest entries labelled labLAB, less EXCLUDED), and reading the Catch2 XML report of a run,
 which comes over a pipe the grader holds, finished or cut short by a kill, into the test
-cases that passed or failed, each failure in words with the numbers its check saw."""
+cases that passed or failed, each failure in words with the numbers its check saw; and the
+test a run started last (PT_TEST_RUNNING_FILE, which names a crash)."""
 import json
 import os
 import re
@@ -194,6 +195,17 @@ def read_report(data, expected):
         rep.problem = (f"the report names a test the lab does not run: \"{short(unknown[0], 80)}\"" if unknown
                        else f"the report holds \"{short(twice[0], 80)}\" twice")
     return rep
+
+
+def running_test(path, tests):
+    """The test named in path (PT_TEST_RUNNING_FILE) when it is one of the lab's tests, else None
+    (the student's code could write anything there: it names a crash, never decides a verdict)."""
+    try:
+        with open(path, "rb") as fh:
+            name = fh.read(4096).decode(errors="replace").rstrip("\n")
+    except OSError:
+        return None
+    return name if name in tests else None
 
 
 def signal_name(rc):

@@ -14,7 +14,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 from . import BUILD_TIMEOUT, die
 from .hints import sentence, suspect_for
-from .lab_tests import CONVENTION, read_report, short, signal_name
+from .lab_tests import CONVENTION, read_report, running_test, short, signal_name
 from .compiler_cache import SUBMISSION_ENV
 from .sandbox import BUILD_LIMITS, FOLDER_CAP, MiB, TEST_LIMITS
 from .reports import folder_size, keep_pictures
@@ -219,17 +219,6 @@ def run_tests(g, ctx):
     judge(g, ctx, r, rep, written)
     if g.verdict == "PASS":
         record_durations(ctx["durations"], rep.durations)
-
-
-def running_test(path, tests):
-    """The test named in path (PT_TEST_RUNNING_FILE) when it is one of the lab's tests, else None
-    (the student's code could write anything there: it names a crash, never decides a verdict)."""
-    try:
-        with open(path, "rb") as fh:
-            name = fh.read(4096).decode(errors="replace").rstrip("\n")
-    except OSError:
-        return None
-    return name if name in tests else None
 
 
 def judge(g, ctx, r, rep, written):
