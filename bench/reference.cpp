@@ -27,7 +27,7 @@ struct Hash {
     const unsigned char* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < bytes; i++) h = (h ^ p[i]) * 1099511628211ull;
   }
-  template <class T> void add_vector(const std::vector<T>& v) { add(v.data(), v.size() * sizeof(T)); }
+  template <class T, class A> void add_vector(const std::vector<T, A>& v) { add(v.data(), v.size() * sizeof(T)); }
 };
 
 // The floor under a square light (analytic_scenes.h), pixel by pixel: albedo / pi times

@@ -114,7 +114,7 @@ class Collapser {
   // ahead, the misses overlap (issue 50: the collapse's CPU time on 1.3 M triangles).
   void fill_blocks() {
     constexpr std::size_t ahead = 8;
-    std::vector<WideBlock>& blocks = out_.blocks;
+    HugeVector<WideBlock>& blocks = out_.blocks;
     for (std::size_t b = 0; b < blocks.size(); b++) {
       if (b + ahead < blocks.size()) {
         for (std::int32_t t : blocks[b + ahead].index) {

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "common/base/huge_pages.h"
 #include "common/kernel/scene_types.h"
 
 namespace pt {
@@ -39,8 +40,8 @@ struct alignas(64) WideBlock {
 };
 
 struct WideBvh {
-  std::vector<WideNode> nodes;  // root at 0; empty when there are no triangles
-  std::vector<WideBlock> blocks;
+  HugeVector<WideNode> nodes;  // root at 0; empty when there are no triangles (huge pages: huge_pages.h)
+  HugeVector<WideBlock> blocks;
   const BvhNode* source = nullptr;  // the binary tree's nodes it was built from
   float root_lo[3] = {}, root_hi[3] = {};  // the root's box: the walk's margin for every box
   // The triangles it was built of: the walk prefetches the best hit's after each leaf, since

@@ -39,8 +39,8 @@ struct Fnv {
     const unsigned char* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < bytes; i++) h = (h ^ p[i]) * 1099511628211ull;
   }
-  template <class T>
-  void add_vector(const std::vector<T>& v) {
+  template <class T, class A>
+  void add_vector(const std::vector<T, A>& v) {
     std::uint64_t n = v.size();
     add(&n, sizeof n);
     if (n) add(v.data(), n * sizeof(T));

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "common/base/huge_pages.h"
 #include "common/kernel/scene_types.h"
 #include "common/scene/environment.h"
 
@@ -42,14 +43,14 @@ struct Bounds {
 
 struct Scene {
   std::string name;                      // file path or builtin:NAME
-  std::vector<Triangle> triangles;       // world space
+  HugeVector<Triangle> triangles;        // world space (on huge pages: common/base/huge_pages.h)
   std::vector<Sphere> spheres;           // world space
   std::vector<Material> materials;       // indexed by Triangle/Sphere .material
   std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
-  std::vector<Light> lights;             // the light table: build_light_table()
+  HugeVector<Light> lights;              // the light table: build_light_table()
   // Its guide (lights.glsl pick_light), light_count + 2 entries: entry k is the first light
   // whose cell uint(cumulative x light_count) (float, as the kernel computes it) is >= k.
-  std::vector<uint> light_guide;
+  HugeVector<uint> light_guide;
   double light_power = 0.0;              // the table's total power (luminance), same place
   std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
   std::vector<SceneCamera> cameras;      // a glTF file's cameras in the order met; camera is
