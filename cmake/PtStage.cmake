@@ -82,9 +82,19 @@ ${kernel_defines}#include \"cpu/cpu_variants.h\"
 #include \"cpu/kernel_prelude.h\"
 #include \"cpu/kernel_scene.h\"
 
+// The kernel's functions have internal linkage (the unnamed namespace), so that GCC may inline
+// those called once (camera_ray, surface_at, ...) into the pixel loop, as a GPU compiler does:
+// with external linkage it kept each a call, its structures passed through memory (issue 50,
+// round nine). Those this stage does not call go unused, hence the pragma.
+#pragma GCC diagnostic ignored \"-Wunused-function\"
 namespace ${ns}::v${i} {
+namespace kernel {
+namespace {
 #include \"cpu/kernel_begin.h\"
 ${cpu_include}#include \"cpu/kernel_end.h\"
+}  // namespace
+}  // namespace kernel
+pt::CpuKernel cpu_kernel() { return kernel::cpu_kernel(); }
 }  // namespace ${ns}::v${i}
 ")
     list(APPEND sources ${out}/cpu_kernel_v${i}.cpp)
