@@ -5,8 +5,8 @@
 #     entry point, compiled to SPIR-V and embedded (specialised per scene at run time);
 #   - DIR's CPU kernel: the same integrator compiled as C++ inside namespace stageK::vI
 #     (its functions of internal linkage, so that GCC inlines as a GPU compiler does; only
-#     stageK::vI::cpu_kernel() is seen outside), once per CPU feature variant (the first N coarse feature groups of cpu/cpu_variants.h
-#     switched on and off: 2^N copies);
+#     stageK::vI::cpu_kernel() is seen outside), once per CPU feature variant (the first N
+#     coarse feature groups of cpu/cpu_variants.h switched on and off: 2^N copies);
 #   - DIR/kernels.h: `stageK::kernels()`, the kernel in both forms (pt::StageKernels);
 #   - the kernel library pt_DIR (used by the program and the tests) and the program DIR.
 # USES_LIGHT_TABLE: the kernel reads the light table and the point lights (light sampling),

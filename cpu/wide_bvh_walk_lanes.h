@@ -1,8 +1,9 @@
 // The CPU walk's tests on SIMD lanes (the step after the article's GPU section, which ends
 // "yet without an acceleration structure"): Walk, a ray as the lanes take it, with a node's 8
 // boxes tested by box_span() of common/kernel/box_slab.glsl on each lane (grown by the margin
-// of the root's box) and a leaf's triangles by hit_triangle_lanes(); and the root's margin. Part of cpu/wide_bvh_walk.cpp, which includes it inside its anonymous namespace,
-// after the kernel's constants and triangle_lane_ops.h, once per instruction set: it is not a
+// of the root's box) and a leaf's triangles by hit_triangle_lanes(); and that margin. Part
+// of cpu/wide_bvh_walk.cpp, which includes it inside its anonymous namespace, after the
+// kernel's constants and triangle_lane_ops.h, once per instruction set: it is not a
 // header of its own. Lab 5's answer here (the clamp of the inverse direction and the slab
 // test) is marked for tools/make_lab_handout.py, which cuts it from the handout.
 #pragma once

@@ -28,10 +28,13 @@ template <class T> struct HugePageAllocator {
   HugePageAllocator() = default;
   template <class U> HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
 
+  // Whether n elements go on huge pages (allocate and deallocate must agree).
+  static bool huge(std::size_t n) { return n * sizeof(T) >= kHugePage; }
+
   T* allocate(std::size_t n) {
     if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < kHugePage) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
+    if (!huge(n)) return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
     const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     void* p = std::aligned_alloc(kHugePage, rounded);
     if (p == nullptr) throw std::bad_alloc();
@@ -42,10 +45,10 @@ template <class T> struct HugePageAllocator {
   }
 
   void deallocate(T* p, std::size_t n) noexcept {
-    if (n * sizeof(T) < kHugePage) {
-      ::operator delete(p, std::align_val_t(alignof(T)));
-    } else {
+    if (huge(n)) {
       std::free(p);
+    } else {
+      ::operator delete(p, std::align_val_t(alignof(T)));
     }
   }
 

@@ -196,7 +196,7 @@ def run_tests(g, ctx):
     def shard(k, files):
         specs = ctx["specs"] if files is None else shard_specs(ctx["specs"], files)
         cmd = [ctx["test_bin"], "-#", "-d", "yes", "-r", "xml", "-o", "{report}"] + specs
-        # The test each shard started last (tests/test_main.cpp writes it unbuffered): a crash's name.
+        # The test each shard started last (tests/catch_runner.cpp writes it unbuffered): a crash's name.
         running = os.path.join(run, f"running.{k}.txt")
         r = box.run(cmd, run, [run], [ctx["src"], ctx["build"]], box.hidden_in_tests, TEST_LIMITS,
                     ctx["args"].timeout, env={**env, "PT_TEST_RUNNING_FILE": running}, report=True,
@@ -241,8 +241,8 @@ def judge(g, ctx, r, rep, written):
     elif written > FOLDER_CAP:
         g.verdict, g.detail = "REFUSED", f"the tests wrote {written // MiB} MB into their folder (at most {FOLDER_CAP // MiB} MB)"
     elif rep.problem and not died:
-        # (A program that died of a signal may have left its report garbled, two threads' fatal
-        # errors written over each other: that is its crash, below, never a PASS either.)
+        # (A program that died of a signal may have left its report cut mid-element: that is its
+        # crash, below, never a REFUSED.)
         g.verdict, g.detail = "REFUSED", f"the test report is not the test program's own: {rep.problem}"
     elif r.timed_out or (died and sig == 24):  # SIGXCPU: the CPU-time limit
         g.verdict = "TIMEOUT"
