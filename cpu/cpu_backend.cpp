@@ -63,7 +63,7 @@ class CpuBackend : public Backend {
     soa_.reset();
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data()};
-    scene_.light_guide = scene.light_guide.data();
+    scene_.light_alias = scene.light_alias.data();
     scene_.features = features;  // read by a copy built for the features at run time (kernel_bindings.h)
     sphere_soa_ = std::make_unique<SphereSoa>(scene.spheres);
     scene_.sphere_soa = sphere_soa_->data.data();

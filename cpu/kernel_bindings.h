@@ -13,8 +13,8 @@ inline const PointLight* point_lights = nullptr;
 inline FrameParams params;
 inline uint* counters = nullptr;       // kCounterCount event counters, updated atomically
 inline const Light* lights = nullptr;  // the light table (stage4)
-inline const uint* light_guide = nullptr;  // its guide (lights.glsl pick_light)
-inline uint light_guide_at(uint i) { return light_guide[i]; }
+inline const LightAlias* light_alias = nullptr;  // its alias table (lights.glsl pick_light)
+inline LightAlias light_alias_at(uint i) { return light_alias[i]; }
 inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
 inline thread_local uvec4 sampler_state = uvec4(0u);  // the sampler's (common/kernel/sampler.glsl)
 // The triangles again as a structure of arrays for the SIMD search (triangle_lanes.h,

@@ -11,7 +11,7 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   point_lights = scene.point_lights;
   counters = scene.counters;
   lights = scene.lights;
-  light_guide = scene.light_guide;
+  light_alias = scene.light_alias;
   triangle_soa = scene.triangle_soa;
   triangle_soa_stride = scene.triangle_soa_stride;
   sphere_soa = scene.sphere_soa;

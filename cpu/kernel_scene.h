@@ -20,7 +20,7 @@ struct KernelScene {
   const PointLight* point_lights;
   uint* counters;  // kCounterCount values, updated by the kernel
   const Light* lights;
-  const uint* light_guide = nullptr;  // the light table's guide (scene.h light_guide)
+  const LightAlias* light_alias = nullptr;  // the light table's alias table (scene.h light_alias)
   const float* triangle_soa = nullptr;  // the triangles as arrays (triangle_soa.h), or nullptr
   uint triangle_soa_stride = 0;
   const float* sphere_soa = nullptr;  // the spheres as arrays (cpu/sphere_soa.h), or nullptr

@@ -7,7 +7,7 @@
 // triangles' attributes, the materials' textures, the texture table and the texels
 // (storage; common/kernel/texture.glsl), 15 the shading normals, 16 and 17 the environment
 // map's radiance and tables (storage; common/kernel/environment.glsl), 18 the light table's
-// guide (storage; common/kernel/lights.glsl pick_light).
+// alias table (storage; common/kernel/lights.glsl pick_light_entry).
 #pragma once
 
 #include <cstdint>

@@ -69,7 +69,7 @@ void check_scene_memory(const VulkanContext& context, const Scene& scene, uint f
   need(scene.materials.size(), sizeof(Material), "the scene needs");
   need(scene.point_lights.size(), sizeof(PointLight), "the scene needs");
   need(scene.lights.size(), sizeof(Light), "the scene needs");
-  need(scene.light_guide.size(), sizeof(uint), "the scene needs");
+  need(scene.light_alias.size(), sizeof(LightAlias), "the scene needs");
   if (bvh && !bvh->nodes.empty()) {
     need(bvh->nodes.size(), sizeof(BvhNode), "the BVH's nodes need", true);
     need(bvh->indices.size(), sizeof(uint), "the BVH's triangle list needs");

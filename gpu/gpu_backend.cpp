@@ -79,7 +79,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
     upload(materials_, scene.materials.data(), scene.materials.size() * sizeof(Material));
     upload(point_lights_, scene.point_lights.data(), lights ? scene.point_lights.size() * sizeof(PointLight) : 0);
     upload(lights_, scene.lights.data(), lights ? scene.lights.size() * sizeof(Light) : 0);
-    upload(light_guide_, scene.light_guide.data(), lights ? scene.light_guide.size() * sizeof(uint) : 0);
+    upload(light_alias_, scene.light_alias.data(), lights ? scene.light_alias.size() * sizeof(LightAlias) : 0);
     // The BVH, or placeholders when the render searches every triangle (params.accel).
     const bool has_bvh = bvh && !bvh->nodes.empty();
     upload(bvh_nodes_, has_bvh ? bvh->nodes.data() : nullptr, has_bvh ? bvh->nodes.size() * sizeof(BvhNode) : 0,
@@ -146,7 +146,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
                                             &output_,    &counters_, &lights_,    &uniform_triangles_,
                                             &bvh_nodes_, &bvh_indices_, &triangle_attributes_, &material_textures_,
                                             &textures_,  &texels_,   &triangle_shading_, &environment_radiance_,
-                                            &environment_tables_, &light_guide_};
+                                            &environment_tables_, &light_alias_};
     pipeline_->bind_buffers(buffers);
     PassResult result;
     uint counters[kGpuCounterCount] = {};  // the kernels' (kNoPixel where they lower it), then the GPU's
@@ -255,7 +255,7 @@ class GpuBackend : public Backend, public DeviceMemoryLimits {
   Buffer triangle_attributes_, material_textures_, textures_, texels_;  // bindings 11 to 14
   Buffer triangle_shading_;                                             // binding 15
   Buffer environment_radiance_, environment_tables_;                    // bindings 16 and 17
-  Buffer light_guide_;                                                  // binding 18
+  Buffer light_alias_;                                                  // binding 18
 };
 
 }  // namespace

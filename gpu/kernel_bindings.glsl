@@ -43,9 +43,9 @@ vec3 environment_texel(uint i) {
   return vec3(env_texels[3u * i], env_texels[3u * i + 1u], env_texels[3u * i + 2u]);
 }
 float environment_table(uint i) { return env_tables[i]; }
-// The light table's guide (common/kernel/lights.glsl pick_light).
-layout(std430, set = 0, binding = 18) readonly buffer LightGuideBuffer { uint light_guide[]; };
-uint light_guide_at(uint i) { return light_guide[i]; }
+// The light table's alias table (common/kernel/lights.glsl pick_light).
+layout(std430, set = 0, binding = 18) readonly buffer LightAliasBuffer { LightAlias light_alias[]; };
+LightAlias light_alias_at(uint i) { return light_alias[i]; }
 uint rng_state;  // the random-number state of one invocation
 uvec4 sampler_state;  // the sampler's state of one invocation (common/kernel/sampler.glsl)
 

@@ -21,24 +21,6 @@
 #include "common/kernel/environment.glsl"
 #include "common/kernel/sphere_light.glsl"
 
-// The first entry whose cumulative probability exceeds u: a binary search between the two
-// entries the guide table (scene.h light_guide, built with the light table) gives for the
-// cell uint(u x light_count), so that a million lights cost a search over a few, not 20
-// steps through cold memory. The same entry as a search over all of them; the cells on
-// either side are searched too, in case this kernel's arithmetic (a double-precision build)
-// rounds u x light_count across a cell's edge where the host's float did not.
-uint pick_light(float u) {
-  uint cell = uint(u * float(params.light_count));
-  uint lo = light_guide_at(cell > 0u ? cell - 1u : 0u);
-  uint hi = min(light_guide_at(min(cell + 2u, params.light_count + 1u)), params.light_count - 1u);
-  while (lo < hi) {
-    uint mid = (lo + hi) / 2u;
-    if (lights[mid].cumulative > u) hi = mid;
-    else lo = mid + 1u;
-  }
-  return lo;
-}
-
 // A point uniform on the area of the emissive triangle `index`, seen from p: defined in
 // triangle_light.glsl, or by labs/lab4.glsl in lab 4's build (cmake/Labs.cmake).
 LightSample sample_triangle_light(uint index, vec3 p, vec2 u, float pick);
@@ -77,6 +59,34 @@ LightSample sample_sky(vec3 n, vec2 u, float pick) {
 // among intervals, so that one 2-D sample both picks and places (below).
 float remap_within(float u, float lo, float width) {
   return min((u - lo) / width, kOneMinusEpsilon);
+}
+
+// The light a number u in [0, 1) picks, and what is left of u for placing the point.
+struct LightPick {
+  uint entry;   // the light table's entry
+  Light light;  // lights[entry]
+  float u;      // uniform in [0, 1) again, whichever light u picked
+};
+
+// Walker's alias method (the light table's alias table, scene.h light_alias): u x
+// light_count chooses a cell, all cells equally likely, and the fraction of u within the
+// cell picks the cell's own light below its threshold, its alias above. Both entries are
+// copied into the cell, so a pick reads one 32-byte record, however many lights there are:
+// one cache miss among a million emitting triangles, where a search of the cumulative
+// probabilities read a guide and then the table. That fraction, rescaled to the part of the
+// cell that picked, is the number left for the light's own sample.
+LightPick pick_light_entry(float u) {
+  float scaled = u * float(params.light_count);
+  uint cell = min(uint(scaled), params.light_count - 1u);
+  LightAlias a = light_alias_at(cell);
+  float f = min(scaled - float(cell), kOneMinusEpsilon);
+  if (f < a.threshold) return LightPick(cell, a.own, remap_within(f, 0.0f, a.threshold));
+  return LightPick(a.alias, a.other, remap_within(f, a.threshold, 1.0f - a.threshold));
+}
+
+// The entry alone (what the tests ask of a pick).
+uint pick_light(float u) {
+  return pick_light_entry(u).entry;
 }
 
 // The probability that sample_light chooses the sky, and that it chooses entry `light` of
@@ -148,10 +158,9 @@ LightSample sample_light_by(vec3 p, vec3 n, uint triangles_by) {
   if (u2.x < sky_pick) return sample_sky(n, vec2(remap_within(u2.x, 0.0f, sky_pick), u2.y), sky_pick);
   if (params.light_count == 0u) return no_light();
   float u = remap_within(u2.x, sky_pick, 1.0f - sky_pick);
-  uint index = pick_light(u);
-  Light light = lights[index];
-  float lo = index == 0u ? 0.0f : lights[index - 1u].cumulative;
-  u2.x = remap_within(u, lo, lights[index].cumulative - lo);
+  LightPick picked = pick_light_entry(u);
+  Light light = picked.light;
+  u2.x = picked.u;
   float pick = (1.0f - sky_pick) * light.pick;
   if (!has_feature(kFeatureSphereLights | kFeaturePointLights) || light.kind == kLightTriangle) {
     if (triangles_by == kTriangleBySolidAngle) {

@@ -170,10 +170,21 @@ struct PointLight {
 
 // One entry of the light table: lights are picked in proportion to their power.
 struct Light {
-  uint kind;         // kLight*
-  uint index;        // index into triangles[], spheres[] or point_lights[]
-  float pick;        // probability of picking it
-  float cumulative;  // cumulative probability up to it (1 for the last entry)
+  uint kind;   // kLight*
+  uint index;  // index into triangles[], spheres[] or point_lights[]
+  float pick;  // probability of picking it
+};
+
+// One cell of the light table's alias table (lights.glsl pick_light; Walker's alias method,
+// built by Vose's algorithm in scene_lights.cpp). A number u in [0, 1) chooses cell
+// k = uint(u x light_count), all of equal probability; within it, the fraction below
+// `threshold` picks light k and the rest light `alias`. Each cell keeps a copy of both
+// entries, so that picking a light reads this one record and not the table.
+struct LightAlias {
+  float threshold;  // the part of the cell that picks light k itself, in [0, 1]
+  uint alias;       // the entry picked in the rest of the cell
+  Light own;        // lights[k]
+  Light other;      // lights[alias]
 };
 
 struct Camera {
@@ -242,7 +253,8 @@ static_assert(offsetof(Material, emission) == 16 && offsetof(Material, alpha) ==
 static_assert(offsetof(Material, specular_f0) == 48);
 static_assert(sizeof(PointLight) == 48);
 static_assert(offsetof(PointLight, intensity) == 16 && offsetof(PointLight, direction) == 32);
-static_assert(sizeof(Light) == 16);
+static_assert(sizeof(Light) == 12);
+static_assert(sizeof(LightAlias) == 32 && offsetof(LightAlias, own) == 8 && offsetof(LightAlias, other) == 20);
 static_assert(sizeof(Camera) == 64);
 static_assert(offsetof(Camera, forward) == 16 && offsetof(Camera, right) == 32 && offsetof(Camera, up) == 48);
 static_assert(sizeof(FrameParams) == 176 && offsetof(FrameParams, env_width) == 144);

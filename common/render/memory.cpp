@@ -106,7 +106,7 @@ std::uint64_t scene_array_bytes(const Scene& s) {
   b = add(b, mul(s.materials.size(), sizeof(Material)));
   b = add(b, mul(s.point_lights.size(), sizeof(PointLight)));
   b = add(b, mul(s.lights.size(), sizeof(Light)));
-  b = add(b, mul(s.light_guide.size(), sizeof(uint)));
+  b = add(b, mul(s.light_alias.size(), sizeof(LightAlias)));
   b = add(b, mul(s.triangle_attributes.size(), sizeof(TriangleAttributes)));
   b = add(b, mul(s.material_textures.size(), sizeof(MaterialTextures)));
   b = add(b, mul(s.triangle_shading.size(), sizeof(TriangleShading)));

@@ -48,9 +48,8 @@ struct Scene {
   std::vector<Material> materials;       // indexed by Triangle/Sphere .material
   std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
   HugeVector<Light> lights;              // the light table: build_light_table()
-  // Its guide (lights.glsl pick_light), light_count + 2 entries: entry k is the first light
-  // whose cell uint(cumulative x light_count) (float, as the kernel computes it) is >= k.
-  HugeVector<uint> light_guide;
+  // Its alias table (lights.glsl pick_light), one cell per light (scene_types.h LightAlias).
+  HugeVector<LightAlias> light_alias;
   double light_power = 0.0;              // the table's total power (luminance), same place
   std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
   std::vector<SceneCamera> cameras;      // a glTF file's cameras in the order met; camera is
@@ -160,9 +159,10 @@ void select_camera(Scene& scene, const std::string& request);
 // with the probability of being picked in proportion to its power (stage4), and sets
 // the primitives' light indices. load_scene() calls it.
 void build_light_table(Scene& scene);
-// Fills scene.light_guide from scene.lights' cumulative probabilities (build_light_table
-// calls it).
-void build_light_guide(Scene& scene);
+// Fills scene.light_alias from scene.lights' pick probabilities (build_light_table calls
+// it): cell k picks light k or its alias with probabilities that add up, over the cells, to
+// each light's pick.
+void build_light_alias(Scene& scene);
 
 // The probability that light sampling picks the sky rather than the table: the sky's
 // power through the scene's bounding sphere against the lights' power (0 without a sky,

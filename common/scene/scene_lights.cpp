@@ -71,7 +71,7 @@ void build_light_table(Scene& scene) {
     double area = 0.5 * glm::length(glm::cross(t.p1 - t.p0, t.p2 - t.p0));
     double sides = m.double_sided != 0u ? 2.0 : 1.0;
     t.light = uint(scene.lights.size());
-    scene.lights.push_back(Light{kLightTriangle, uint(i), 0.0f, 0.0f});
+    scene.lights.push_back(Light{kLightTriangle, uint(i), 0.0f});
     power.push_back(M_PI * area * sides * luminance(mean_emission(scene, t.material, texture_means)));
   }
   for (std::size_t i = 0; i < scene.spheres.size(); i++) {
@@ -80,43 +80,57 @@ void build_light_table(Scene& scene) {
     if (!is_emissive(m)) continue;
     double r = s.radius;
     s.light = uint(scene.lights.size());
-    scene.lights.push_back(Light{kLightSphere, uint(i), 0.0f, 0.0f});
+    scene.lights.push_back(Light{kLightSphere, uint(i), 0.0f});
     power.push_back(M_PI * 4.0 * M_PI * r * r * luminance(m.emission));
   }
   for (std::size_t i = 0; i < scene.point_lights.size(); i++) {
-    scene.lights.push_back(Light{kLightPoint, uint(i), 0.0f, 0.0f});
+    scene.lights.push_back(Light{kLightPoint, uint(i), 0.0f});
     power.push_back(punctual_power(scene, scene.point_lights[i]));
   }
   double total = 0.0;
   for (double p : power) total += p;
   scene.light_power = total;
-  double cumulative = 0.0;
-  for (std::size_t i = 0; i < scene.lights.size(); i++) {
-    // Lights of zero luminance (pure blue, say) still get a small share, so none is missed.
-    double p = total > 0.0 ? power[i] / total : 1.0 / double(power.size());
-    p = std::max(p, 1e-6);
-    cumulative += p;
-    scene.lights[i].pick = float(p), scene.lights[i].cumulative = float(cumulative);
+  // Lights of zero luminance (pure blue, say) still get a small share, so none is missed.
+  std::vector<double> share(power.size());
+  double sum = 0.0;
+  for (std::size_t i = 0; i < power.size(); i++) {
+    share[i] = std::max(total > 0.0 ? power[i] / total : 1.0 / double(power.size()), 1e-6);
+    sum += share[i];
   }
-  // Normalise so that the last cumulative value is exactly 1.
-  for (Light& l : scene.lights) l.pick /= float(cumulative), l.cumulative /= float(cumulative);
-  if (!scene.lights.empty()) scene.lights.back().cumulative = 1.0f;
-  build_light_guide(scene);
+  for (std::size_t i = 0; i < power.size(); i++) scene.lights[i].pick = float(share[i] / sum);
+  build_light_alias(scene);
 }
 
-void build_light_guide(Scene& scene) {
-  // Entry k: the first light whose cell uint(cumulative x n) is >= k, the cell computed in
-  // float as pick_light computes u's. The cell grows with its argument, so for a u of cell k
-  // the light pick_light wants (the first whose cumulative exceeds u) is no earlier than
-  // entry k (a light of a lower cell has a cumulative below u) and no later than entry
-  // k + 1 (whose cell is above u's, so its cumulative is above u).
-  const uint n = uint(scene.lights.size());
-  scene.light_guide.assign(std::size_t(n) + 2, n == 0 ? 0u : n - 1u);
-  uint k = 0;
-  for (uint i = 0; i < n; i++) {
-    const uint cell = uint(scene.lights[i].cumulative * float(n));
-    while (k <= cell && k <= n + 1) scene.light_guide[k++] = i;
+void build_light_alias(Scene& scene) {
+  // Vose's algorithm: each light's probability times n is its share of n cells of size 1.
+  // A light with less than a whole cell takes one and is topped up from a light with more,
+  // which becomes its alias and keeps what is left; so every cell holds at most two lights,
+  // and each light's parts add up to its share. Sums in double, over the float picks the
+  // kernel divides by, so that the chance of each light is its pick to float precision.
+  const std::size_t n = scene.lights.size();
+  double sum = 0.0;
+  for (const Light& l : scene.lights) sum += double(l.pick);
+  std::vector<double> share(n);
+  std::vector<std::size_t> small, large;
+  for (std::size_t i = 0; i < n; i++) {
+    share[i] = double(scene.lights[i].pick) / sum * double(n);
+    (share[i] < 1.0 ? small : large).push_back(i);
   }
+  scene.light_alias.assign(n, LightAlias{});
+  for (std::size_t i = 0; i < n; i++) {
+    scene.light_alias[i] = LightAlias{1.0f, uint(i), scene.lights[i], scene.lights[i]};
+  }
+  while (!small.empty() && !large.empty()) {
+    const std::size_t s = small.back(), l = large.back();
+    small.pop_back();
+    LightAlias& cell = scene.light_alias[s];
+    cell.threshold = float(share[s]);
+    cell.alias = uint(l);
+    cell.other = scene.lights[l];
+    share[l] -= 1.0 - share[s];
+    if (share[l] < 1.0) large.pop_back(), small.push_back(l);
+  }
+  // What is left holds a whole cell up to rounding: threshold 1, as made above.
 }
 
 float sky_pick_probability(const Scene& scene, glm::vec3 sky) {

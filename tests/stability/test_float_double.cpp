@@ -119,7 +119,7 @@ using namespace pt::test;
     ns::materials = scene.materials.data();                                                    \
     ns::point_lights = scene.point_lights.data();                                              \
     ns::lights = scene.lights.data();                                                          \
-    ns::light_guide = scene.light_guide.data();                                                \
+    ns::light_alias = scene.light_alias.data();                                                \
     std::vector<MaterialTextures> neutral = neutral_material_textures(scene.materials.size());  \
     ns::material_textures = neutral.data(); /* the scenes have no textures (texture.glsl) */    \
     ns::counters = counters;                                                                   \

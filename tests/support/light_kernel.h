@@ -1,7 +1,7 @@
 // The kernel code of the light-sampling tests (stage4's light sample and shadow rays:
-// tests/common/kernel/test_light_sampling.cpp, test_shadow_rays.cpp; stage5_mis's:
-// test_spherical_triangle.cpp, test_spherical_triangle_sampling.cpp, test_light_pdf.cpp,
-// test_power_heuristic.cpp, test_light_pdf_integral.cpp), compiled as the CPU kernels
+// tests/common/kernel/test_light_sampling.cpp, test_light_pick.cpp, test_shadow_rays.cpp;
+// stage5_mis's: test_spherical_triangle.cpp, test_spherical_triangle_sampling.cpp,
+// test_light_pdf.cpp, test_power_heuristic.cpp, test_light_pdf_integral.cpp), compiled as the CPU kernels
 // compile it (the GPU compiles the same source): lights.glsl and what it needs, mis.glsl
 // through kernel_support.h (kernel_definitions.glsl), and bind_scene. Include it inside the
 // test file's own kernel namespace, itself in an anonymous namespace; no include guard,

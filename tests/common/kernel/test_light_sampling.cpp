@@ -1,6 +1,7 @@
 // Light sampling (common/kernel/lights.glsl), compiled as the CPU kernels compile it:
-// the mean of 1 / pdf over samples reproduces each light's subtended solid angle, and the
-// pick probabilities follow the lights' power.
+// the mean of 1 / pdf over samples reproduces each light's subtended solid angle, and each
+// kind of light's weight and pdf are its formula's. (Picking one light of many:
+// test_light_pick.cpp.)
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -127,27 +128,6 @@ TEST_CASE("light sampling: triangle_light_pdf is d^2 / (cos_y area) times the pi
   CHECK(kernel::triangle_light_pdf(2u, glm::vec3(0, 0, -1), 1.0f) == 0.0f);
 }
 
-TEST_CASE("light sampling: lights are picked in proportion to their power", "[stage4][lights]") {
-  pt::Scene s;
-  uint dim = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(1.0f)));
-  uint bright = s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(3.0f), true));
-  s.add_triangle({0, 1, 0}, {1, 1, 0}, {0, 1, 1}, dim);     // area 0.5, one side
-  s.add_triangle({0, 2, 0}, {2, 2, 0}, {0, 2, 1}, bright);  // area 1, both sides, 3x brighter
-  s.point_lights.push_back(pt::make_point_light({0, 3, 0}, {1, 1, 1}));
-  pt::build_light_table(s);
-  REQUIRE(s.lights.size() == 3);
-  // Powers: pi 0.5 1, pi 1 2 3, 4 pi 1 -> 0.5 : 6 : 4.
-  CHECK(s.lights[0].pick == Approx(0.5 / 10.5).epsilon(1e-5));
-  CHECK(s.lights[1].pick == Approx(6.0 / 10.5).epsilon(1e-5));
-  CHECK(s.lights[2].pick == Approx(4.0 / 10.5).epsilon(1e-5));
-  CHECK(s.lights[2].cumulative == 1.0f);
-  CHECK(s.triangles[0].light == 0u);
-  kernel::bind_scene(s);
-  CHECK(kernel::pick_light(0.0f) == 0u);
-  CHECK(kernel::pick_light(0.05f) == 1u);
-  CHECK(kernel::pick_light(0.99f) == 2u);
-}
-
 TEST_CASE("light sampling: a spot light's weight is I falloff / d^2, full within the inner cone, none beyond the outer",
           "[stage4][lights][punctual]") {
   pt::Scene s;
@@ -207,43 +187,3 @@ TEST_CASE("light sampling: spot and directional lights are picked by their power
   CHECK(s.lights[2].pick == Approx(2.0 / 6.4).epsilon(1e-5));
 }
 
-TEST_CASE("light sampling: the guide table picks the same light as a search over the whole table",
-          "[stage4][lights]") {
-  // Light tables of 1, 2, 7 and 100,000 emitters of powers spread over ten decades (cells
-  // with no light boundary, and cells with many), and the u where pick_light's answer
-  // changes: every cumulative value and its float neighbours.
-  std::mt19937 rng(pt::test::test_seed(17));
-  std::uniform_real_distribution<float> decade(-5.0f, 5.0f), unit(0.0f, 1.0f);
-  for (int count : {1, 2, 7, 100000}) {
-    pt::Scene s;
-    for (int i = 0; i < count; i++) {
-      const float power = std::pow(10.0f, decade(rng));
-      const float x = float(i % 300), z = float(i / 300);
-      s.add_triangle({x, 1.0f, z}, {x + 0.5f, 1.0f, z}, {x, 1.0f, z + 0.5f},
-                     s.add_material(pt::make_diffuse(glm::vec3(0.0f), glm::vec3(power))));
-    }
-    pt::build_light_table(s);
-    kernel::bind_scene(s);
-    REQUIRE(s.light_guide.size() == s.lights.size() + 2);
-    // The answer by the definition: the first entry whose cumulative exceeds u.
-    auto first_above = [&](float u) {
-      return uint(std::upper_bound(s.lights.begin(), s.lights.end(), u,
-                                   [](float v, const pt::Light& l) { return v < l.cumulative; }) -
-                  s.lights.begin());
-    };
-    std::vector<float> us = {0.0f, 0x1.fffffep-1f};
-    for (const pt::Light& l : s.lights) {
-      us.push_back(l.cumulative);
-      us.push_back(std::nextafter(l.cumulative, 0.0f));
-      us.push_back(std::nextafter(l.cumulative, 1.0f));
-    }
-    for (int i = 0; i < 100000; i++) us.push_back(unit(rng));
-    int wrong = 0;
-    for (float u : us) {
-      if (!(u < 1.0f)) continue;  // samples are below 1 (kOneMinusEpsilon)
-      wrong += kernel::pick_light(u) != std::min(first_above(u), uint(count - 1));
-    }
-    INFO(count << " lights, " << us.size() << " values of u");
-    CHECK(wrong == 0);
-  }
-}
