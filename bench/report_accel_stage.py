@@ -1,5 +1,5 @@
 """pt_bench's report, the stage section (issue 50), for bench/report_accel.py: from accel_stage.csv,
-accel_stage_run.txt and, when kept beside them, accel_stage_before.csv (and _round1, _before_round9), the tables of a stage's render
+accel_stage_run.txt and, when kept beside them, accel_stage_before.csv (and _round1, _before_round10), the tables of a stage's render
 on the 1.3 M-triangle mesh against Embree on the same rays and of a sample's cost.
 Not part of the article: machinery for measuring the step after it (the BVH)."""
 import csv
@@ -20,7 +20,7 @@ def stage_section(out_dir, read_keys):
         return []
     before = read_rows(os.path.join(out_dir, "accel_stage_before.csv"))
     round1 = read_rows(os.path.join(out_dir, "accel_stage_round1.csv"))
-    before_r9 = read_rows(os.path.join(out_dir, "accel_stage_before_round9.csv"))
+    before_r10 = read_rows(os.path.join(out_dir, "accel_stage_before_round10.csv"))
     run = read_keys(os.path.join(out_dir, "accel_stage_run.txt"))
     keys = sorted({(s, v) for (s, v, _) in rows}, key=lambda k: (k[0], ["inside", "outside", "grazing"].index(k[1])))
 
@@ -43,16 +43,16 @@ def stage_section(out_dir, read_keys):
           "(what *render* was before issue 50's second round), *+ build*: render() building the BVH too; *walk*: the CPU's wide BVH alone on the same rays; Embree: rtcIntersect1 on them; *round "
           "one*: accel_stage_round1.csv, the section by the build after issue 50's first round (its *render* "
           "collapsed in set_scene), run side by side with an earlier run of this section (accel_stage_before_guide.csv, before the light pick's guide table); *before issue 50*: accel_stage_before.csv, "
-          "the section by the build before either round, run beside round one's; *before round nine*: "
-          "accel_stage_before_round9.csv, the section by the build before issue 50's ninth round (the kernel's "
-          "functions inlined), run just before this one (the pair before: accel_stage_round9_pair1_before.csv and "
-          "_after.csv; the run after round eight: accel_stage_round8.csv)." % (
+          "the section by the build before either round, run beside round one's; *before round ten*: "
+          "accel_stage_before_round10.csv, the section by the build before issue 50's tenth round (the light "
+          "table's alias table), run just before this one (the pairs before: accel_stage_round10_pair*_before.csv "
+          "and _after.csv; the run after round nine: accel_stage_round9.csv)." % (
               run.get("command", "pt_bench --section stage"), run.get("date", "?"), run.get("load_before", "?"),
               run.get("load_after", "?"), run.get("machine", "machine not recorded"), run.get("threads", "?"), run.get("embree", "Embree"),
               run.get("rounds", "?"), "%sx%s" % (rows[keys[0] + ("render_no_build",)]["width"],
                                                    rows[keys[0] + ("render_no_build",)]["height"])), ""]
-    md += ["| stage | view | rays | render M rays/s | render / Embree | before round nine | collapsing / Embree | round one "
-           "| before issue 50 | + build / Embree | walk / Embree | walk before round nine | round one's walk "
+    md += ["| stage | view | rays | render M rays/s | render / Embree | before round ten | collapsing / Embree | round one "
+           "| before issue 50 | + build / Embree | walk / Embree | walk before round ten | round one's walk "
            "| Embree M rays/s | target |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for s, v in keys:
@@ -62,15 +62,15 @@ def stage_section(out_dir, read_keys):
         ratio = rows[(s, v, "render_no_build")]["ratio_to_embree"]
         met = "met" if ratio and float(ratio) >= STAGE_TARGETS[s] else "missed"
         ratios1 = ", ".join("%s %s" % (q[5:], f(round1, s, v, q, "ratio_to_embree", "%.2f")) for q in walk)
-        ratios9 = ", ".join("%s %s" % (q[5:], f(before_r9, s, v, q, "ratio_to_embree", "%.2f")) for q in walk)
+        ratios10 = ", ".join("%s %s" % (q[5:], f(before_r10, s, v, q, "ratio_to_embree", "%.2f")) for q in walk)
         md.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s %.1f: **%s** |" % (
             s, v, rows[(s, v, "render_no_build")]["rays"], f(rows, s, v, "render_no_build", "mrays_per_cpu_s"),
             f(rows, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
-            f(before_r9, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
+            f(before_r10, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
             f(rows, s, v, "render_collapsing", "ratio_to_embree", "%.2f"),
             f(round1, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
             f(before, s, v, "render_no_build", "ratio_to_embree", "%.2f"),
-            f(rows, s, v, "render_with_build", "ratio_to_embree", "%.2f"), ratios, ratios9, ratios1, emb, s, STAGE_TARGETS[s], met))
+            f(rows, s, v, "render_with_build", "ratio_to_embree", "%.2f"), ratios, ratios10, ratios1, emb, s, STAGE_TARGETS[s], met))
     md += ["", "A sample's cost, ns of CPU time per sample (the render's CPU time over its samples; *rest*: the "
            "render's passes less the camera rays and the walk alone on the same rays, i.e. shading, the sampler's "
            "other numbers, the pixel loop, and the walk's cost beyond its own timing):", "",
