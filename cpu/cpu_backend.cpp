@@ -64,6 +64,9 @@ class CpuBackend : public Backend {
     scene_ = KernelScene{scene.triangles.data(), scene.spheres.data(), scene.materials.data(),
                          scene.point_lights.data(), nullptr, scene.lights.data()};
     scene_.light_alias = scene.light_alias.data();
+    scene_.light_runs = scene.light_runs.data();
+    scene_.light_run_count = uint(scene.light_runs.size());
+    scene_.triangle_light_count = scene.triangle_light_count;
     scene_.features = features;  // read by a copy built for the features at run time (kernel_bindings.h)
     sphere_soa_ = std::make_unique<SphereSoa>(scene.spheres);
     scene_.sphere_soa = sphere_soa_->data.data();

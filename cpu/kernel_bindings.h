@@ -15,6 +15,25 @@ inline uint* counters = nullptr;       // kCounterCount event counters, updated 
 inline const Light* lights = nullptr;  // the light table (stage4)
 inline const LightAlias* light_alias = nullptr;  // its alias table (lights.glsl pick_light)
 inline LightAlias light_alias_at(uint i) { return light_alias[i]; }
+// The triangle lights as runs of consecutive triangles (scene.h light_runs), or none.
+inline const LightRun* light_runs = nullptr;
+inline uint light_run_count = 0u;
+inline uint triangle_light_count = 0u;
+// A hint to the memory, no more (lights.glsl pick_light_entry): the triangle of light
+// `light`, which a pick in its cell most often samples, fetched while the cell itself is
+// read, so that the two cache misses overlap instead of following one another. The runs
+// give the triangle without reading the light table; a light they do not cover gets none.
+inline void prefetch_light_triangle(uint light) {
+  if (light >= triangle_light_count) return;
+  uint lo = 0u, hi = light_run_count;  // the last run that starts at or before `light`
+  while (hi - lo > 1u) {
+    const uint mid = (lo + hi) / 2u;
+    if (light_runs[mid].first_light <= light) lo = mid;
+    else hi = mid;
+  }
+  const char* t = reinterpret_cast<const char*>(&triangles[light_runs[lo].first_triangle + (light - light_runs[lo].first_light)]);
+  __builtin_prefetch(t), __builtin_prefetch(t + sizeof(Triangle) - 1);
+}
 inline thread_local uint rng_state = 0u;  // the random-number state of one invocation
 inline thread_local uvec4 sampler_state = uvec4(0u);  // the sampler's (common/kernel/sampler.glsl)
 // The triangles again as a structure of arrays for the SIMD search (triangle_lanes.h,

@@ -12,6 +12,9 @@ inline void cpu_bind(const pt::KernelScene& scene, const pt::FrameParams& pass) 
   counters = scene.counters;
   lights = scene.lights;
   light_alias = scene.light_alias;
+  light_runs = scene.light_runs;
+  light_run_count = scene.light_run_count;
+  triangle_light_count = scene.triangle_light_count;
   triangle_soa = scene.triangle_soa;
   triangle_soa_stride = scene.triangle_soa_stride;
   sphere_soa = scene.sphere_soa;

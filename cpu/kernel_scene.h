@@ -21,6 +21,9 @@ struct KernelScene {
   uint* counters;  // kCounterCount values, updated by the kernel
   const Light* lights;
   const LightAlias* light_alias = nullptr;  // the light table's alias table (scene.h light_alias)
+  const LightRun* light_runs = nullptr;     // its triangle lights as runs (scene.h light_runs)
+  uint light_run_count = 0;
+  uint triangle_light_count = 0;            // the lights the runs cover
   const float* triangle_soa = nullptr;  // the triangles as arrays (triangle_soa.h), or nullptr
   uint triangle_soa_stride = 0;
   const float* sphere_soa = nullptr;  // the spheres as arrays (cpu/sphere_soa.h), or nullptr

@@ -46,6 +46,9 @@ float environment_table(uint i) { return env_tables[i]; }
 // The light table's alias table (common/kernel/lights.glsl pick_light).
 layout(std430, set = 0, binding = 18) readonly buffer LightAliasBuffer { LightAlias light_alias[]; };
 LightAlias light_alias_at(uint i) { return light_alias[i]; }
+// A hint the CPU gives its memory (cpu/kernel_bindings.h); a GPU hides the latency with
+// other invocations instead.
+void prefetch_light_triangle(uint light) {}
 uint rng_state;  // the random-number state of one invocation
 uvec4 sampler_state;  // the sampler's state of one invocation (common/kernel/sampler.glsl)
 

@@ -78,6 +78,7 @@ struct LightPick {
 LightPick pick_light_entry(float u) {
   float scaled = u * float(params.light_count);
   uint cell = min(uint(scaled), params.light_count - 1u);
+  prefetch_light_triangle(cell);  // the CPU asks for the likely triangle meanwhile (a hint)
   LightAlias a = light_alias_at(cell);
   float f = min(scaled - float(cell), kOneMinusEpsilon);
   if (f < a.threshold) return LightPick(cell, a.own, remap_within(f, 0.0f, a.threshold));

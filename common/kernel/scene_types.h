@@ -187,6 +187,15 @@ struct LightAlias {
   Light other;      // lights[alias]
 };
 
+// Triangle lights whose triangles follow one another as the lights do: light first_light + i
+// is triangle first_triangle + i, up to the next run. Only the CPU reads them, to ask the
+// memory for a light's triangle before the light's cell has arrived
+// (cpu/kernel_bindings.h prefetch_light_triangle).
+struct LightRun {
+  uint first_light;
+  uint first_triangle;
+};
+
 struct Camera {
   vec3 origin;     // eye position
   uint kind;       // kCamera*
@@ -254,6 +263,7 @@ static_assert(offsetof(Material, specular_f0) == 48);
 static_assert(sizeof(PointLight) == 48);
 static_assert(offsetof(PointLight, intensity) == 16 && offsetof(PointLight, direction) == 32);
 static_assert(sizeof(Light) == 12);
+static_assert(sizeof(LightRun) == 8);
 static_assert(sizeof(LightAlias) == 32 && offsetof(LightAlias, own) == 8 && offsetof(LightAlias, other) == 20);
 static_assert(sizeof(Camera) == 64);
 static_assert(offsetof(Camera, forward) == 16 && offsetof(Camera, right) == 32 && offsetof(Camera, up) == 48);

@@ -50,6 +50,10 @@ struct Scene {
   HugeVector<Light> lights;              // the light table: build_light_table()
   // Its alias table (lights.glsl pick_light), one cell per light (scene_types.h LightAlias).
   HugeVector<LightAlias> light_alias;
+  // The triangle lights (the table's first entries) as runs of consecutive triangles, at most
+  // kMaxLightRuns of them, else none (scene_types.h LightRun; build_light_alias).
+  std::vector<LightRun> light_runs;
+  uint triangle_light_count = 0;  // the entries the runs cover
   double light_power = 0.0;              // the table's total power (luminance), same place
   std::optional<CameraDesc> camera;      // none: frame the bounds (make_camera)
   std::vector<SceneCamera> cameras;      // a glTF file's cameras in the order met; camera is
@@ -161,8 +165,11 @@ void select_camera(Scene& scene, const std::string& request);
 void build_light_table(Scene& scene);
 // Fills scene.light_alias from scene.lights' pick probabilities (build_light_table calls
 // it): cell k picks light k or its alias with probabilities that add up, over the cells, to
-// each light's pick.
+// each light's pick. Fills scene.light_runs too.
 void build_light_alias(Scene& scene);
+// The most runs of consecutive emitting triangles that the CPU's hint searches (a few
+// cache lines); a scene with more gets none, and its light samples no hint.
+constexpr std::size_t kMaxLightRuns = 64;
 
 // The probability that light sampling picks the sky rather than the table: the sky's
 // power through the scene's bounding sphere against the lights' power (0 without a sky,

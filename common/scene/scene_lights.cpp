@@ -131,6 +131,17 @@ void build_light_alias(Scene& scene) {
     if (share[l] < 1.0) large.pop_back(), small.push_back(l);
   }
   // What is left holds a whole cell up to rounding: threshold 1, as made above.
+
+  // The runs: build_light_table lists the triangle lights first, in the triangles' order.
+  scene.light_runs.clear();
+  scene.triangle_light_count = 0;
+  for (std::size_t i = 0; i < n && scene.lights[i].kind == kLightTriangle; i++) {
+    if (i == 0 || scene.lights[i].index != scene.lights[i - 1].index + 1) {
+      scene.light_runs.push_back(LightRun{uint(i), scene.lights[i].index});
+    }
+    scene.triangle_light_count = uint(i + 1);
+  }
+  if (scene.light_runs.size() > kMaxLightRuns) scene.light_runs.clear(), scene.triangle_light_count = 0;
 }
 
 float sky_pick_probability(const Scene& scene, glm::vec3 sky) {

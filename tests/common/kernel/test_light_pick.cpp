@@ -142,3 +142,38 @@ TEST_CASE("light sampling: the number left after the pick is uniform", "[stage4]
     CHECK(chi2 < 27.9);
   }
 }
+
+TEST_CASE("light sampling: the runs of emitting triangles name each triangle light's triangle",
+          "[stage4][lights]") {
+  // The CPU's hint (cpu/kernel_bindings.h prefetch_light_triangle) finds a light's triangle
+  // through the runs instead of the light table: they must agree for every triangle light.
+  // Triangles that emit in runs of 1 to 5 with dark ones between, then a sphere light and a
+  // point light after them in the table; and a scene with more runs than kMaxLightRuns.
+  for (int runs : {1, 7, int(pt::kMaxLightRuns) + 1}) {
+    pt::Scene s;
+    const uint lit = s.add_material(pt::make_diffuse(glm::vec3(0.5f), glm::vec3(1.0f)));
+    const uint dark = s.add_material(pt::make_diffuse(glm::vec3(0.5f)));
+    for (int r = 0; r < runs; r++) {
+      for (int i = 0; i < 1 + r % 5; i++) s.add_triangle({float(i), 1, float(r)}, {float(i) + 0.5f, 1, float(r)}, {float(i), 1, float(r) + 0.5f}, lit);
+      s.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, dark);
+    }
+    s.add_sphere({0, 5, 0}, 0.5f, lit);
+    s.point_lights.push_back(pt::make_point_light({0, 3, 0}, {1, 1, 1}));
+    pt::build_light_table(s);
+    INFO(runs << " runs");
+    if (std::size_t(runs) > pt::kMaxLightRuns) {
+      CHECK(s.light_runs.empty());
+      CHECK(s.triangle_light_count == 0u);
+      continue;
+    }
+    REQUIRE(s.light_runs.size() == std::size_t(runs));
+    REQUIRE(s.lights[s.triangle_light_count].kind != pt::kLightTriangle);
+    int wrong = 0;
+    for (uint k = 0; k < s.triangle_light_count; k++) {
+      std::size_t r = 0;
+      while (r + 1 < s.light_runs.size() && s.light_runs[r + 1].first_light <= k) r++;
+      wrong += s.light_runs[r].first_triangle + (k - s.light_runs[r].first_light) != s.lights[k].index;
+    }
+    CHECK(wrong == 0);
+  }
+}
