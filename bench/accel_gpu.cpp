@@ -76,7 +76,7 @@ void GpuBvhTracer::set_scene(const Scene& scene, const Bvh& bvh, const RaySet& r
   const gpu::Buffer* bindings[gpu::kBindingCount] = {&triangles, &unused, &unused, &ray_buffer, &params_buffer,
                                                      &output,    &unused, &unused, &m.uniform->buffer, &nodes,
                                                      &indices,   &unused, &unused, &unused, &unused, &unused,
-                                                     &unused,    &unused, &unused};  // 11-14: textures, 15: shading normals, 16-17: environment, 18: light guide
+                                                     &unused,    &unused, &unused};  // 11-14: textures, 15: shading normals, 16-17: environment, 18: light alias table
   const uint32_t groups = uint32_t((count + kRaysPerGroup - 1) / kRaysPerGroup);
   // Specialised to the scene's features, as the renderer specialises its kernels.
   m.kernel.emplace(m.context, intersect_raycast_spirv, scene_feature_mask(scene, glm::vec3(0.0f)), bindings, groups,

@@ -55,7 +55,7 @@ GpuRayRates gpu_rays_per_second(const Scene& scene, std::span<const glm::vec3> o
   const uint32_t groups = uint32_t((count + kRaysPerGroup - 1) / kRaysPerGroup);
   const gpu::Buffer* naive_bindings[gpu::kBindingCount] = {
       &triangles, &unused, &unused, &ray_buffer, &naive_params, &naive_out, &unused, &unused, &unused_uniform, &unused, &unused,
-      &unused,    &unused, &unused, &unused, &unused, &unused, &unused, &unused};  // 11-14: textures, 15: shading normals, 16-17: environment, 18: light guide (none)
+      &unused,    &unused, &unused, &unused, &unused, &unused, &unused, &unused};  // 11-14: textures, 15: shading normals, 16-17: environment, 18: light alias table (none)
   const gpu::Buffer* renderer_bindings[gpu::kBindingCount] = {
       &triangles, &unused, &unused, &ray_buffer, &renderer_params, &renderer_out, &unused, &unused, &uniform.buffer, &unused, &unused,
       &unused,    &unused, &unused, &unused, &unused, &unused, &unused, &unused};
