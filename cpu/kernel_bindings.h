@@ -13,7 +13,7 @@ inline const PointLight* point_lights = nullptr;
 inline FrameParams params;
 inline uint* counters = nullptr;       // kCounterCount event counters, updated atomically
 inline const Light* lights = nullptr;  // the light table (stage4)
-inline const LightAlias* light_alias = nullptr;  // its alias table (lights.glsl pick_light)
+inline const LightAlias* light_alias = nullptr;  // its alias table (lights.glsl pick_light_entry)
 inline LightAlias light_alias_at(uint i) { return light_alias[i]; }
 // The triangle lights as runs of consecutive triangles (scene.h light_runs), or none.
 inline const LightRun* light_runs = nullptr;

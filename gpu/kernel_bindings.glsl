@@ -43,7 +43,7 @@ vec3 environment_texel(uint i) {
   return vec3(env_texels[3u * i], env_texels[3u * i + 1u], env_texels[3u * i + 2u]);
 }
 float environment_table(uint i) { return env_tables[i]; }
-// The light table's alias table (common/kernel/lights.glsl pick_light).
+// The light table's alias table (common/kernel/lights.glsl pick_light_entry).
 layout(std430, set = 0, binding = 18) readonly buffer LightAliasBuffer { LightAlias light_alias[]; };
 LightAlias light_alias_at(uint i) { return light_alias[i]; }
 // A hint the CPU gives its memory (cpu/kernel_bindings.h); a GPU hides the latency with

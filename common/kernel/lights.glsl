@@ -85,11 +85,6 @@ LightPick pick_light_entry(float u) {
   return LightPick(a.alias, a.other, remap_within(f, a.threshold, 1.0f - a.threshold));
 }
 
-// The entry alone (what the tests ask of a pick).
-uint pick_light(float u) {
-  return pick_light_entry(u).entry;
-}
-
 // The probability that sample_light chooses the sky, and that it chooses entry `light` of
 // the light table.
 float sky_pick_probability() {

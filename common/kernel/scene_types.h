@@ -175,7 +175,7 @@ struct Light {
   float pick;  // probability of picking it
 };
 
-// One cell of the light table's alias table (lights.glsl pick_light; Walker's alias method,
+// One cell of the light table's alias table (lights.glsl pick_light_entry; Walker's alias method,
 // built by Vose's algorithm in scene_lights.cpp). A number u in [0, 1) chooses cell
 // k = uint(u x light_count), all of equal probability; within it, the fraction below
 // `threshold` picks light k and the rest light `alias`. Each cell keeps a copy of both

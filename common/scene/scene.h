@@ -48,10 +48,10 @@ struct Scene {
   std::vector<Material> materials;       // indexed by Triangle/Sphere .material
   std::vector<PointLight> point_lights;  // KHR_lights_punctual point lights
   HugeVector<Light> lights;              // the light table: build_light_table()
-  // Its alias table (lights.glsl pick_light), one cell per light (scene_types.h LightAlias).
+  // Its alias table (lights.glsl pick_light_entry), one cell per light (scene_types.h LightAlias).
   HugeVector<LightAlias> light_alias;
   // The triangle lights (the table's first entries) as runs of consecutive triangles, at most
-  // kMaxLightRuns of them, else none (scene_types.h LightRun; build_light_alias).
+  // kMaxLightRuns of them, else none (scene_types.h LightRun; build_light_runs).
   std::vector<LightRun> light_runs;
   uint triangle_light_count = 0;  // the entries the runs cover
   double light_power = 0.0;              // the table's total power (luminance), same place
@@ -165,8 +165,11 @@ void select_camera(Scene& scene, const std::string& request);
 void build_light_table(Scene& scene);
 // Fills scene.light_alias from scene.lights' pick probabilities (build_light_table calls
 // it): cell k picks light k or its alias with probabilities that add up, over the cells, to
-// each light's pick. Fills scene.light_runs too.
+// each light's pick.
 void build_light_alias(Scene& scene);
+// Fills scene.light_runs and triangle_light_count from scene.lights (build_light_table
+// calls it).
+void build_light_runs(Scene& scene);
 // The most runs of consecutive emitting triangles that the CPU's hint searches (a few
 // cache lines); a scene with more gets none, and its light samples no hint.
 constexpr std::size_t kMaxLightRuns = 64;

@@ -99,6 +99,7 @@ void build_light_table(Scene& scene) {
   }
   for (std::size_t i = 0; i < power.size(); i++) scene.lights[i].pick = float(share[i] / sum);
   build_light_alias(scene);
+  build_light_runs(scene);
 }
 
 void build_light_alias(Scene& scene) {
@@ -116,9 +117,10 @@ void build_light_alias(Scene& scene) {
     share[i] = double(scene.lights[i].pick) / sum * double(n);
     (share[i] < 1.0 ? small : large).push_back(i);
   }
-  scene.light_alias.assign(n, LightAlias{});
+  scene.light_alias.clear();
+  scene.light_alias.reserve(n);
   for (std::size_t i = 0; i < n; i++) {
-    scene.light_alias[i] = LightAlias{1.0f, uint(i), scene.lights[i], scene.lights[i]};
+    scene.light_alias.push_back(LightAlias{1.0f, uint(i), scene.lights[i], scene.lights[i]});
   }
   while (!small.empty() && !large.empty()) {
     const std::size_t s = small.back(), l = large.back();
@@ -131,8 +133,11 @@ void build_light_alias(Scene& scene) {
     if (share[l] < 1.0) large.pop_back(), small.push_back(l);
   }
   // What is left holds a whole cell up to rounding: threshold 1, as made above.
+}
 
-  // The runs: build_light_table lists the triangle lights first, in the triangles' order.
+void build_light_runs(Scene& scene) {
+  // build_light_table lists the triangle lights first, in the triangles' order.
+  const std::size_t n = scene.lights.size();
   scene.light_runs.clear();
   scene.triangle_light_count = 0;
   for (std::size_t i = 0; i < n && scene.lights[i].kind == kLightTriangle; i++) {

@@ -53,8 +53,8 @@ TEST_CASE("light sampling: lights are picked in proportion to their power", "[st
   const std::vector<double> chance = alias_chances(s);
   for (std::size_t i = 0; i < 3; i++) CHECK(chance[i] == Approx(s.lights[i].pick).epsilon(1e-6));
   kernel::bind_scene(s);
-  CHECK(kernel::pick_light(0.0f) == 0u);  // the bottom of cell 0 is light 0's own
-  CHECK(kernel::pick_light(0.99f) == s.light_alias[2].alias);
+  CHECK(kernel::pick_light_entry(0.0f).entry == 0u);  // the bottom of cell 0 is light 0's own
+  CHECK(kernel::pick_light_entry(0.99f).entry == s.light_alias[2].alias);
 }
 
 TEST_CASE("light sampling: the alias table picks every light with its probability, in one read",
